@@ -1,0 +1,10 @@
+//! Quadrature: fixed rules, deterministic adaptive integration, interpolation of smooth
+//! functions, and the half-vector parameterization of the hemisphere used by every
+//! reflectance integral. This folder knows integrands, not tables.
+
+pub mod adaptive;
+pub mod chebyshev;
+pub mod gauss;
+pub mod hemisphere;
+
+pub use adaptive::{integrate, integrate1, Estimate, Tolerance};

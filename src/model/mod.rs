@@ -1,0 +1,14 @@
+//! The physics: pure functions of f64, one small type per term, each with its formula and
+//! its source. Nothing here knows about tables or files.
+
+pub mod brdf;
+pub mod fresnel;
+pub mod masking;
+pub mod ndf;
+pub mod roughness;
+
+pub use brdf::{Brdf, Specular};
+pub use fresnel::Fresnel;
+pub use masking::Masking;
+pub use ndf::{Ndf, NdfKind};
+pub use roughness::RoughnessQuantity;
