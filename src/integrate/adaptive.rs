@@ -52,6 +52,10 @@ pub struct Tolerance {
     pub initial_panels: usize,
     /// Maximum bisection depth below the initial panels.
     pub max_depth: u32,
+    /// Error per unit length below which bisection cannot help because the integrand
+    /// itself is only known to that accuracy (an inner integral in a nested quadrature):
+    /// a panel is accepted once its error estimate is below `noise_floor × length`.
+    pub noise_floor: f64,
 }
 
 impl Default for Tolerance {
@@ -60,6 +64,7 @@ impl Default for Tolerance {
             abs: 1e-10,
             initial_panels: 1,
             max_depth: 30,
+            noise_floor: 0.0,
         }
     }
 }
@@ -96,11 +101,13 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
     a: f64,
     b: f64,
     tol: f64,
+    floor: f64,
     depth: u32,
     out: &mut Estimate<N>,
 ) {
     let e = panel(f, a, b);
-    if depth == 0 || e.max_error() <= tol || !(e.max_error().is_finite()) {
+    let err = e.max_error();
+    if depth == 0 || err <= tol || err <= floor * (b - a) || !err.is_finite() {
         out.add(&e);
         return;
     }
@@ -110,8 +117,8 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
         return;
     }
     out.evals += e.evals;
-    recurse(f, a, m, 0.5 * tol, depth - 1, out);
-    recurse(f, m, b, 0.5 * tol, depth - 1, out);
+    recurse(f, a, m, 0.5 * tol, floor, depth - 1, out);
+    recurse(f, m, b, 0.5 * tol, floor, depth - 1, out);
 }
 
 /// Integrates `f` over `[a, b]` to the absolute tolerance `tol.abs` (estimated).
@@ -137,7 +144,7 @@ pub fn integrate<const N: usize, F: FnMut(f64) -> [f64; N]>(
         } else {
             a + w * (i + 1) as f64
         };
-        recurse(&mut f, lo, hi, tol.abs / n as f64, tol.max_depth, &mut out);
+        recurse(&mut f, lo, hi, tol.abs / n as f64, tol.noise_floor, tol.max_depth, &mut out);
     }
     out
 }

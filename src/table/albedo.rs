@@ -1,0 +1,95 @@
+//! `albedo` and `albedo-avg`: directional albedo E(μ) = ∫ f(v, l)(n·l) dω_l of the model's
+//! BRDF (its own Fresnel, its diffuse lobe), and its cosine-weighted average
+//! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
+
+use super::{TableKind, TableSpec, TexelResult};
+use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
+use crate::integrate::{integrate, Tolerance};
+use crate::model::Brdf;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// One BRDF per roughness texel, with any lazily built numeric G1 forced now (in parallel,
+/// deterministically: each is a pure function of its α).
+pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
+    let r = spec.axes.last().expect("roughness axis");
+    (0..r.size)
+        .into_par_iter()
+        .map(|i| {
+            let b = spec
+                .model
+                .brdf(r.alpha(i).expect("roughness axis"))
+                .expect("validated");
+            if let Some(s) = &b.specular {
+                s.ndf.g1(0.5);
+            }
+            b
+        })
+        .collect()
+}
+
+/// E(μ) for one BRDF, to absolute tolerance `tol`. Returns [value], [error], evaluations.
+pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
+    let warp = brdf
+        .specular
+        .as_ref()
+        .map_or(LobeWarp::TanOverScale(1.0), |s| s.ndf.warp());
+    let wd = brdf.diffuse_weight / PI;
+    let e = integrate_over_l(mu, warp, tol, |n| {
+        let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));
+        [s + wd * n.n_dot_l]
+    });
+    (e.value, e.error, e.evals)
+}
+
+pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
+    let brdfs = brdfs_per_roughness(spec);
+    let axes = spec.axes.clone();
+    let tol = spec.tolerance;
+    match spec.kind {
+        TableKind::Albedo => Box::new(move |idx| {
+            let (v, e, n) = directional_albedo(&brdfs[idx[1]], axes[0].coord(idx[0]), tol);
+            TexelResult {
+                value: v.to_vec(),
+                error: e.to_vec(),
+                evals: n,
+            }
+        }),
+        TableKind::AlbedoAvg => Box::new(move |idx| {
+            let (v, e, n) = average_albedo(&brdfs[idx[0]], tol);
+            TexelResult {
+                value: vec![v],
+                error: vec![e],
+                evals: n,
+            }
+        }),
+        _ => unreachable!(),
+    }
+}
+
+/// E_avg = 2∫₀¹ E(μ) μ dμ: adaptive Gauss–Kronrod over μ (half the budget) of the nested
+/// hemisphere integral (the other half; its error enters as 2∫ err·μ dμ ≤ err).
+pub fn average_albedo(brdf: &Brdf, tol: f64) -> (f64, f64, u64) {
+    let inner_err = std::cell::Cell::new(0.0f64);
+    let evals = std::cell::Cell::new(0u64);
+    let outer = integrate(
+        |mu: f64| {
+            let (v, e, n) = directional_albedo(brdf, mu, 0.5 * tol);
+            inner_err.set(inner_err.get().max(e[0]));
+            evals.set(evals.get() + n);
+            [2.0 * v[0] * mu]
+        },
+        0.0,
+        1.0,
+        Tolerance {
+            abs: 0.5 * tol,
+            initial_panels: 2,
+            max_depth: 30,
+        },
+    );
+    (
+        outer.value[0],
+        outer.error[0] + inner_err.get(),
+        evals.get(),
+    )
+}

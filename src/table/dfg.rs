@@ -1,0 +1,74 @@
+//! `dfg`: the split-sum tables of the specular lobe with the Fresnel factored out.
+//!
+//! With Schlick's F = F0 + (1 − F0)·Fc, Fc = (1 − v·h)⁵, the directional albedo is linear in
+//! F0: E = F0·∫(1 − Fc) f cos + ∫ Fc f cos (Karis 2013, "Real Shading in Unreal Engine 4",
+//! eq. 8), with f the BRDF at F = 1. Filament stores the same information as
+//! (∫ Fc f cos, ∫ f cos) so that the second channel is the single-scattering albedo used for
+//! multiple-scattering compensation (Filament documentation, "Energy loss in specular
+//! reflectance"), and optionally the cloth albedo ∫ D_Charlie·V_Ashikhmin·cos in the third.
+
+use super::albedo::brdfs_per_roughness;
+use super::{DfgLayout, TableSpec, TexelResult};
+use crate::integrate::hemisphere::integrate_over_l;
+use crate::model::fresnel::schlick_weight;
+use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
+
+/// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
+/// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
+pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
+    let e = integrate_over_l(mu, spec.ndf.warp(), tol, |n| {
+        let f = spec.cosine_weighted_with(n, 1.0);
+        let fc = schlick_weight(n.v_dot_h);
+        [f * (1.0 - fc), f * fc]
+    });
+    (e.value, e.error, e.evals)
+}
+
+/// The sheen albedo ∫ D_Charlie(α)·V_Ashikhmin·(n·l) dω_l at one (μ, α).
+pub fn sheen_albedo(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
+    let sheen = Specular {
+        ndf: Ndf::new(NdfKind::Charlie, alpha).expect("alpha validated > 0"),
+        masking: Masking::Ashikhmin,
+        fresnel: Fresnel::None,
+    };
+    let e = integrate_over_l(mu, sheen.ndf.warp(), tol, |n| [sheen.cosine_weighted(n)]);
+    (e.value[0], e.error[0], e.evals)
+}
+
+pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
+    let brdfs = brdfs_per_roughness(spec);
+    let axes = spec.axes.clone();
+    let tol = spec.tolerance;
+    let layout = spec.dfg_layout.expect("validated");
+    let cloth = spec.cloth;
+    Box::new(move |idx| {
+        let mu = axes[0].coord(idx[0]);
+        let s = brdfs[idx[1]]
+            .specular
+            .as_ref()
+            .expect("validated: dfg has an NDF");
+        // each channel of the pair below is a sum/difference of the two integrals, so its
+        // error bound is the sum of theirs
+        let ([a, b], [ea, eb], n) = split_sum(s, mu, tol);
+        let mut r = match layout {
+            DfgLayout::Karis => TexelResult {
+                value: vec![a, b],
+                error: vec![ea, eb],
+                evals: n,
+            },
+            DfgLayout::Filament => TexelResult {
+                value: vec![b, a + b],
+                error: vec![eb, ea + eb],
+                evals: n,
+            },
+        };
+        if cloth {
+            let alpha = axes[1].alpha(idx[1]).expect("roughness axis");
+            let (v, e, n) = sheen_albedo(alpha, mu, tol);
+            r.value.push(v);
+            r.error.push(e);
+            r.evals += n;
+        }
+        r
+    })
+}

@@ -1,0 +1,159 @@
+//! Table kinds: each turns a [`TableSpec`] into a [`Lut`] through the model and the
+//! quadrature. One file per kind; this file holds the shared texel loop.
+//!
+//! Determinism: every texel is computed independently from its own coordinates with a
+//! fixed-order quadrature, and rayon only decides *which thread* computes it, so the
+//! output is bit-identical for any thread count.
+
+pub mod albedo;
+pub mod dfg;
+pub mod local;
+pub mod spec;
+
+pub use spec::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+
+use crate::lut::{Channel, Lut};
+use rayon::prelude::*;
+
+/// Why a bake failed.
+#[derive(Debug, thiserror::Error)]
+pub enum BakeError {
+    #[error("invalid table spec {name:?}: {msg}")]
+    Invalid { name: String, msg: String },
+    #[error("table {name:?}: texel {texel:?} is not finite ({value}) in channel {channel}")]
+    NonFinite {
+        name: String,
+        texel: [usize; 3],
+        channel: String,
+        value: f64,
+    },
+}
+
+/// The result of one texel: a value and an error estimate per channel, and the
+/// evaluations it cost.
+#[derive(Clone, Debug)]
+pub(crate) struct TexelResult {
+    pub value: Vec<f64>,
+    pub error: Vec<f64>,
+    pub evals: u64,
+}
+
+impl TexelResult {
+    pub fn exact(value: Vec<f64>) -> Self {
+        let n = value.len();
+        TexelResult {
+            value,
+            error: vec![0.0; n],
+            evals: 0,
+        }
+    }
+}
+
+/// Bakes a table. Validates the spec first; never returns a table with NaN or Inf.
+pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
+    spec.validate().map_err(|msg| BakeError::Invalid {
+        name: spec.name.clone(),
+        msg,
+    })?;
+    let channels = channels(spec);
+    let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
+        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
+            local::texel_fn(spec)
+        }
+        TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
+        TableKind::Dfg => dfg::texel_fn(spec),
+    };
+    let dims = [
+        spec.axes.first().map_or(1, |a| a.size),
+        spec.axes.get(1).map_or(1, |a| a.size),
+        spec.axes.get(2).map_or(1, |a| a.size),
+    ];
+    let n = dims[0] * dims[1] * dims[2];
+    let results: Vec<TexelResult> = (0..n)
+        .into_par_iter()
+        .with_min_len(1)
+        .map(|i| {
+            let idx = [
+                i % dims[0],
+                (i / dims[0]) % dims[1],
+                i / (dims[0] * dims[1]),
+            ];
+            per_row(idx)
+        })
+        .collect();
+    let nc = channels.len();
+    let mut data = Vec::with_capacity(n * nc);
+    let mut err = vec![0.0f64; nc];
+    let mut evals = 0u64;
+    for (i, r) in results.iter().enumerate() {
+        for c in 0..nc {
+            let v = r.value[c];
+            if !v.is_finite() || !(v as f32).is_finite() {
+                return Err(BakeError::NonFinite {
+                    name: spec.name.clone(),
+                    texel: [
+                        i % dims[0],
+                        (i / dims[0]) % dims[1],
+                        i / (dims[0] * dims[1]),
+                    ],
+                    channel: channels[c].name.clone(),
+                    value: v,
+                });
+            }
+            data.push(v as f32);
+            err[c] = err[c].max(r.error[c]);
+        }
+        evals += r.evals;
+    }
+    Ok(Lut {
+        axes: spec.axes.clone(),
+        channels,
+        data,
+        error_estimate: err,
+        evaluations: evals,
+    })
+}
+
+fn ch(name: &str, meaning: &str) -> Channel {
+    Channel {
+        name: name.into(),
+        meaning: meaning.into(),
+    }
+}
+
+/// The channels of a table, with their meaning.
+pub fn channels(spec: &TableSpec) -> Vec<Channel> {
+    match spec.kind {
+        TableKind::Ndf => vec![ch("D", "D(n.h; alpha), normalized: int D (n.h) dw = 1")],
+        TableKind::G1 => vec![ch("G1", "Smith G1(cos theta; alpha) = 1/(1 + Lambda(cos theta))")],
+        TableKind::G2 => vec![ch("G2", "G2(cos theta_v, cos theta_l; alpha)")],
+        TableKind::Vgroove => vec![
+            ch("G", "min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) with v.h = (n.l + n.v)/(2 n.h)"),
+            ch(
+                "realizable",
+                "1 where some pair of unit vectors l, v has these three cosines, 0 where the triple is geometrically impossible (G is still the formula's value there)",
+            ),
+        ],
+        TableKind::Albedo => vec![ch("E", "E(mu) = int f(v,l) (n.l) dw_l over the hemisphere")],
+        TableKind::AlbedoAvg => vec![ch("E_avg", "E_avg = 2 int_0^1 E(mu) mu dmu")],
+        TableKind::Dfg => match spec.dfg_layout {
+            Some(DfgLayout::Karis) => vec![
+                ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
+                ch("B", "B = int Fc f cos dw_l"),
+            ],
+            _ => {
+                let mut v = vec![
+                    ch("R", "int Fc f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = mix(R, G, F0) = (1 - F0) R + F0 G"),
+                    ch("G", "int f cos dw_l (F = 1): the single-scattering albedo; multiscatter compensation 1 + F0 (1/G - 1)"),
+                ];
+                if spec.cloth {
+                    v.push(ch(
+                        "B",
+                        "int D_Charlie(alpha) V_Ashikhmin (n.l) dw_l: the sheen (cloth) directional albedo, may exceed 1 at grazing angles",
+                    ));
+                }
+                v
+            }
+        },
+    }
+}
