@@ -56,6 +56,11 @@ pub struct Tolerance {
     /// itself is only known to that accuracy (an inner integral in a nested quadrature):
     /// a panel is accepted once its error estimate is below `noise_floor × length`.
     pub noise_floor: f64,
+    /// Evaluation budget: once spent, remaining panels are accepted as they are (their
+    /// error estimates still count), so a pathological integrand costs bounded time and
+    /// reports a large error instead of hanging. The traversal order is fixed, so where the
+    /// budget runs out is deterministic too.
+    pub max_evals: u64,
 }
 
 impl Default for Tolerance {
@@ -65,6 +70,7 @@ impl Default for Tolerance {
             initial_panels: 1,
             max_depth: 30,
             noise_floor: 0.0,
+            max_evals: 1 << 22,
         }
     }
 }
@@ -103,11 +109,13 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
     tol: f64,
     floor: f64,
     depth: u32,
+    budget: u64,
     out: &mut Estimate<N>,
 ) {
     let e = panel(f, a, b);
     let err = e.max_error();
-    if depth == 0 || err <= tol || err <= floor * (b - a) || !err.is_finite() {
+    if depth == 0 || err <= tol || err <= floor * (b - a) || !err.is_finite() || out.evals >= budget
+    {
         out.add(&e);
         return;
     }
@@ -117,8 +125,8 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
         return;
     }
     out.evals += e.evals;
-    recurse(f, a, m, 0.5 * tol, floor, depth - 1, out);
-    recurse(f, m, b, 0.5 * tol, floor, depth - 1, out);
+    recurse(f, a, m, 0.5 * tol, floor, depth - 1, budget, out);
+    recurse(f, m, b, 0.5 * tol, floor, depth - 1, budget, out);
 }
 
 /// Integrates `f` over `[a, b]` to the absolute tolerance `tol.abs` (estimated).
@@ -144,7 +152,16 @@ pub fn integrate<const N: usize, F: FnMut(f64) -> [f64; N]>(
         } else {
             a + w * (i + 1) as f64
         };
-        recurse(&mut f, lo, hi, tol.abs / n as f64, tol.noise_floor, tol.max_depth, &mut out);
+        recurse(
+            &mut f,
+            lo,
+            hi,
+            tol.abs / n as f64,
+            tol.noise_floor,
+            tol.max_depth,
+            tol.max_evals,
+            &mut out,
+        );
     }
     out
 }

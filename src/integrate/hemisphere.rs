@@ -30,6 +30,9 @@ pub struct Node {
     pub n_dot_h: f64,
     /// `v·h = l·h`.
     pub v_dot_h: f64,
+    /// sin²θh, computed directly rather than as 1 − (n·h)²: for narrow lobes (α ~ 1e-5)
+    /// 1 − cos² loses all but a few digits, and D needs it.
+    pub sin2_h: f64,
 }
 
 /// How the inner (θh) variable is warped.
@@ -65,16 +68,23 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
     let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
     let tan_v = sin_v / mu_v;
     // Budget: half to the outer φ integral, half to the inner integrals (their errors
-    // add up over a φ-range of π, doubled by symmetry).
+    // add up over a φ-range of π, doubled by symmetry). The inner integrals are the outer
+    // integrand, so their error is noise to the outer rule: bisecting the outer panels
+    // below that noise floor would only chase it, hence `noise_floor`.
+    let inner_abs = tol_abs / (4.0 * PI);
     let inner_tol = Tolerance {
-        abs: tol_abs / (4.0 * PI),
+        abs: inner_abs,
         initial_panels: 2,
         max_depth: 40,
+        max_evals: 100_000,
+        ..Default::default()
     };
     let outer_tol = Tolerance {
         abs: tol_abs / 4.0, // per half-range, and each is doubled by symmetry
         initial_panels: 2,
         max_depth: 40,
+        noise_floor: 4.0 * inner_abs,
+        max_evals: 30_000,
     };
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);
@@ -88,6 +98,7 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
                 n_dot_l: 2.0 * v_dot_h * cos_h - mu_v,
                 n_dot_h: cos_h,
                 v_dot_h,
+                sin2_h: sin_h * sin_h,
             }
         };
         let _ = sp;

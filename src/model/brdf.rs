@@ -28,7 +28,7 @@ impl Specular {
     /// split-sum tables weight F = 1 by Schlick's (1 − v·h)⁵ themselves).
     #[inline]
     pub fn cosine_weighted_with(&self, n: &Node, f: f64) -> f64 {
-        let d = self.ndf.d(n.n_dot_h);
+        let d = self.ndf.d_cs(n.n_dot_h, n.sin2_h);
         if d == 0.0 {
             return 0.0;
         }
@@ -56,6 +56,7 @@ impl Specular {
             n_dot_l: nl,
             n_dot_h: h[2],
             v_dot_h: vh,
+            sin2_h: h[0] * h[0] + h[1] * h[1],
         };
         self.cosine_weighted(&node) / nl
     }

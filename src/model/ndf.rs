@@ -162,27 +162,37 @@ impl Ndf {
         if cos_h <= 0.0 {
             return 0.0;
         }
-        let c2 = (cos_h * cos_h).min(1.0);
+        let c = cos_h.min(1.0);
+        self.d_cs(c, (1.0 - c) * (1.0 + c))
+    }
+
+    /// D from cos θh and sin²θh given separately. Narrow lobes need sin²θh to full relative
+    /// precision (1 − cos² cancels catastrophically for θh ~ 1e-5, which turns D into noise
+    /// that no quadrature can converge on); the hemisphere integrator supplies it.
+    #[inline]
+    pub fn d_cs(&self, cos_h: f64, sin2_h: f64) -> f64 {
+        if cos_h <= 0.0 {
+            return 0.0;
+        }
+        let c2 = cos_h * cos_h;
         let a = self.alpha;
         match self.kind {
             NdfKind::Beckmann => {
-                let tan2 = (1.0 - c2) / c2;
+                let tan2 = sin2_h / c2;
                 self.norm * (-tan2 / (a * a)).exp() / (c2 * c2)
             }
             NdfKind::Ggx => {
+                // (n·h)²(α² − 1) + 1 = sin²θh + α² cos²θh, without cancellation
                 let a2 = a * a;
-                let d = c2 * (a2 - 1.0) + 1.0;
+                let d = sin2_h + a2 * c2;
                 a2 / (PI * d * d)
             }
             NdfKind::Gaussian => {
-                let th = cos_h.min(1.0).acos();
+                let th = sin2_h.sqrt().atan2(cos_h);
                 self.norm * (-(th / a) * (th / a)).exp()
             }
             NdfKind::BlinnPhong => self.norm * cos_h.min(1.0).powf(self.exponent),
-            NdfKind::Charlie => {
-                let s2 = (1.0 - c2).max(0.0);
-                self.norm * s2.powf(0.5 / a)
-            }
+            NdfKind::Charlie => self.norm * sin2_h.max(0.0).powf(0.5 / a),
         }
     }
 
@@ -266,6 +276,7 @@ impl Ndf {
             abs: NUMERIC_TOL,
             initial_panels: 8,
             max_depth: 40,
+            ..Default::default()
         };
         let (mu_lambda, _) = integrate1(
             |w| {
@@ -293,7 +304,8 @@ impl Ndf {
         if self.kind == NdfKind::Gaussian {
             self.norm * (-(th / self.alpha) * (th / self.alpha)).exp()
         } else {
-            self.d(th.cos())
+            let (sn, cs) = th.sin_cos();
+            self.d_cs(cs, sn * sn)
         }
     }
 
@@ -326,6 +338,7 @@ pub fn gaussian_normalization(m: f64) -> f64 {
         abs: 1e-15,
         initial_panels: 4,
         max_depth: 40,
+        ..Default::default()
     };
     let (i, _) = integrate1(
         |x| {
@@ -350,6 +363,7 @@ mod tests {
             abs: 1e-13,
             initial_panels: 8,
             max_depth: 40,
+            ..Default::default()
         };
         let (v, _) = integrate1(
             |th| 2.0 * PI * ndf.d_at_theta(th) * th.cos() * th.sin(),

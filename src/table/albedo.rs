@@ -85,6 +85,8 @@ pub fn average_albedo(brdf: &Brdf, tol: f64) -> (f64, f64, u64) {
             abs: 0.5 * tol,
             initial_panels: 2,
             max_depth: 30,
+            noise_floor: 4.0 * 0.5 * tol,
+            ..Default::default()
         },
     );
     (
