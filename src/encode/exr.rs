@@ -1,0 +1,620 @@
+//! OpenEXR encoding: a single-part, uncompressed, scanline image with one FLOAT or HALF
+//! channel per table channel.
+//!
+//! Layout: width = nx; height = ny for 2D tables, 1 for 1D tables, ny·nz for 3D tables, whose
+//! slices are stacked vertically (slice z occupies rows `[z·ny, (z+1)·ny)`). The first
+//! scanline in the file (the top row, data window y = 0) holds table row y = 0. Channels
+//! carry the table's channel names; EXR stores them sorted alphabetically.
+//!
+//! Header attributes are written as EXR `string` attributes (UTF-8) after the standard ones,
+//! in the order given, each key prefixed with `brdfbake:` unless it already contains a colon.
+//!
+//! Determinism: pixel data are stored uncompressed, so the bytes depend only on the table,
+//! the attributes and the layout of the standard header the `exr` crate writes — not on a
+//! deflate implementation. The `exr` crate keeps custom attributes in a `HashMap` (random
+//! iteration order per map), so they are not handed to it: this module writes the image
+//! without them and splices them into the header itself, fixing up the chunk offset table.
+
+use super::{EncodeError, Encoder};
+use crate::lut::Lut;
+use crate::table::spec::Storage;
+use ::exr::image::{AnyChannel, AnyChannels, Blocks, Encoding, FlatSamples, Image, Layer};
+use ::exr::math::Vec2;
+use ::exr::meta::attribute::{Compression, LineOrder, Text};
+use ::exr::meta::header::{standard_names, LayerAttributes};
+use ::exr::prelude::traits::{read, ReadChannels, ReadLayers, WritableImage};
+use half::f16;
+use std::io::Cursor;
+
+/// Encodes a table as an OpenEXR image (see the module documentation for the layout).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ExrEncoder {
+    /// Sample precision: FLOAT (f32) or HALF (f16, rounded to nearest, ties to even).
+    pub storage: Storage,
+    /// The table's name, used in error messages.
+    pub table_name: String,
+}
+
+/// What [`decode_exr`] returns: width, height, the channels (name and row-major samples,
+/// top row first, in file order — alphabetical), and the non-standard string attributes
+/// (name as stored, value) in file order.
+pub type DecodedExr = (usize, usize, Vec<(String, Vec<f32>)>, Vec<(String, String)>);
+
+/// The prefix given to attribute keys that carry no namespace of their own.
+pub const ATTRIBUTE_PREFIX: &str = "brdfbake:";
+
+const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+const TILED_BIT: u32 = 1 << 9;
+const LONG_NAMES_BIT: u32 = 1 << 10;
+const DEEP_BIT: u32 = 1 << 11;
+const MULTIPART_BIT: u32 = 1 << 12;
+/// Attribute and channel names up to this length need no "long names" flag.
+const SHORT_NAME_MAX: usize = 31;
+/// The longest attribute or channel name EXR allows.
+const LONG_NAME_MAX: usize = 255;
+
+impl Encoder for ExrEncoder {
+    fn extension(&self) -> &'static str {
+        "exr"
+    }
+
+    fn encode(&self, lut: &Lut, attributes: &[(String, String)]) -> Result<Vec<u8>, EncodeError> {
+        let (width, height) = self.image_size(lut)?;
+        let attributes = header_attributes(attributes)?;
+        let channels = self.channels(lut)?;
+
+        let layer = Layer::new(
+            Vec2(width, height),
+            LayerAttributes::default(),
+            Encoding {
+                compression: Compression::Uncompressed,
+                blocks: Blocks::ScanLines,
+                line_order: LineOrder::Increasing,
+            },
+            AnyChannels::sort(channels.into()),
+        );
+        let mut bytes = Vec::new();
+        Image::from_layer(layer)
+            .write()
+            .non_parallel()
+            .to_buffered(Cursor::new(&mut bytes))
+            .map_err(|e| EncodeError::Exr(e.to_string()))?;
+        splice_attributes(&bytes, &attributes).map_err(EncodeError::Exr)
+    }
+}
+
+impl ExrEncoder {
+    fn shape_error(&self, reason: impl Into<String>) -> EncodeError {
+        EncodeError::Shape {
+            table: self.table_name.clone(),
+            reason: reason.into(),
+        }
+    }
+
+    /// Image width and height, after checking that axes, channels and data agree.
+    fn image_size(&self, lut: &Lut) -> Result<(usize, usize), EncodeError> {
+        if lut.axes.is_empty() || lut.axes.len() > 3 {
+            return Err(self.shape_error(format!(
+                "an EXR table has 1 to 3 axes, this one has {}",
+                lut.axes.len()
+            )));
+        }
+        if let Some(a) = lut.axes.iter().find(|a| a.size == 0) {
+            return Err(self.shape_error(format!("axis `{}` has no texels", a.name)));
+        }
+        if lut.channels.is_empty() {
+            return Err(self.shape_error("the table has no channels"));
+        }
+        let too_large = || self.shape_error("the table is too large for an EXR image");
+        let width = lut.dim(0);
+        let height = lut.dim(1).checked_mul(lut.dim(2)).ok_or_else(too_large)?;
+        if i32::try_from(width).is_err() || i32::try_from(height).is_err() {
+            return Err(too_large());
+        }
+        let samples = width
+            .checked_mul(height)
+            .and_then(|n| n.checked_mul(lut.channels.len()))
+            .ok_or_else(too_large)?;
+        if lut.data.len() != samples {
+            return Err(self.shape_error(format!(
+                "{} samples expected ({width}×{height} texels × {} channels), the data has {}",
+                samples,
+                lut.channels.len(),
+                lut.data.len()
+            )));
+        }
+        Ok((width, height))
+    }
+
+    /// One EXR channel per table channel, in table order, samples converted and checked.
+    fn channels(&self, lut: &Lut) -> Result<Vec<AnyChannel<FlatSamples>>, EncodeError> {
+        let nc = lut.channels.len();
+        let (nx, ny) = (lut.dim(0), lut.dim(1));
+        let mut out: Vec<AnyChannel<FlatSamples>> = Vec::with_capacity(nc);
+        for (c, channel) in lut.channels.iter().enumerate() {
+            let name_error = |reason| EncodeError::ChannelName {
+                table: self.table_name.clone(),
+                channel: channel.name.clone(),
+                reason,
+            };
+            let name = &channel.name;
+            if name.is_empty() {
+                return Err(name_error("it is empty"));
+            }
+            if !name.bytes().all(|b| b.is_ascii_graphic() || b == b' ') {
+                return Err(name_error("only printable ASCII characters are allowed"));
+            }
+            if name.len() > LONG_NAME_MAX {
+                return Err(name_error("it is longer than 255 bytes"));
+            }
+            if lut.channels[..c].iter().any(|other| other.name == *name) {
+                return Err(name_error("another channel has the same name"));
+            }
+
+            let values: Vec<f32> = lut.data.iter().skip(c).step_by(nc).copied().collect();
+            if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+                return Err(EncodeError::NonFinite {
+                    table: self.table_name.clone(),
+                    channel: name.clone(),
+                    texel: [i % nx, (i / nx) % ny, i / (nx * ny)],
+                    value: values[i] as f64,
+                });
+            }
+            let samples = match self.storage {
+                Storage::F32 => FlatSamples::F32(values),
+                Storage::F16 => {
+                    let halves: Vec<f16> = values.iter().map(|&v| f16::from_f32(v)).collect();
+                    if halves.iter().any(|h| h.is_infinite()) {
+                        let largest = values.iter().copied().fold(0.0f32, |m, v| {
+                            if v.abs() > m.abs() {
+                                v
+                            } else {
+                                m
+                            }
+                        });
+                        return Err(EncodeError::Unrepresentable {
+                            table: self.table_name.clone(),
+                            channel: name.clone(),
+                            value: largest as f64,
+                            format: "f16 (EXR HALF, largest finite value 65504)",
+                        });
+                    }
+                    FlatSamples::F16(halves)
+                }
+            };
+            out.push(AnyChannel {
+                name: Text::new_or_none(name).ok_or_else(|| name_error("not EXR text"))?,
+                sample_data: samples,
+                // data, not colour: no lossy compression is used, so the hint is moot
+                quantize_linearly: false,
+                sampling: Vec2(1, 1),
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Header attributes as stored: (EXR name, value) byte strings.
+type RawStrings = Vec<(Vec<u8>, Vec<u8>)>;
+
+/// The attributes as (EXR name, value) byte strings, checked.
+fn header_attributes(attributes: &[(String, String)]) -> Result<RawStrings, EncodeError> {
+    let mut out: RawStrings = Vec::with_capacity(attributes.len());
+    for (key, value) in attributes {
+        let error = |reason: &str| EncodeError::Attribute {
+            key: key.clone(),
+            reason: reason.to_string(),
+        };
+        if key.is_empty() {
+            return Err(error("the key is empty"));
+        }
+        let name = if key.contains(':') {
+            key.clone()
+        } else {
+            format!("{ATTRIBUTE_PREFIX}{key}")
+        };
+        if name.contains('\0') {
+            return Err(error("the key contains a NUL character"));
+        }
+        if name.len() > LONG_NAME_MAX {
+            return Err(error(&format!(
+                "the EXR attribute name `{name}` is longer than {LONG_NAME_MAX} bytes"
+            )));
+        }
+        if i32::try_from(value.len()).is_err() {
+            return Err(error("the value is too long"));
+        }
+        if out.iter().any(|(n, _)| n == name.as_bytes()) {
+            return Err(error(&format!(
+                "another attribute is also written as `{name}`"
+            )));
+        }
+        out.push((name.into_bytes(), value.as_bytes().to_vec()));
+    }
+    Ok(out)
+}
+
+/// One attribute of a header, as stored.
+struct RawAttribute<'a> {
+    name: &'a [u8],
+    kind: &'a [u8],
+    value: &'a [u8],
+}
+
+/// The header of a single-part EXR file, as stored.
+struct RawHeader<'a> {
+    version_flags: u32,
+    attributes: Vec<RawAttribute<'a>>,
+    /// Index of the NUL byte that ends the header.
+    end: usize,
+}
+
+/// Walks the header of a single-part, non-deep EXR file.
+fn scan_header(bytes: &[u8]) -> Result<RawHeader<'_>, String> {
+    fn take<'a>(bytes: &'a [u8], at: &mut usize, n: usize) -> Result<&'a [u8], String> {
+        let s = at
+            .checked_add(n)
+            .and_then(|end| bytes.get(*at..end))
+            .ok_or("the EXR header is truncated")?;
+        *at += n;
+        Ok(s)
+    }
+    fn cstr<'a>(bytes: &'a [u8], at: &mut usize) -> Result<&'a [u8], String> {
+        let rest = bytes.get(*at..).unwrap_or(&[]);
+        let n = rest
+            .iter()
+            .position(|&b| b == 0)
+            .ok_or("the EXR header is truncated")?;
+        *at += n + 1;
+        Ok(&rest[..n])
+    }
+
+    if bytes.get(..4) != Some(&MAGIC[..]) {
+        return Err("not an OpenEXR file (bad magic number)".into());
+    }
+    let mut at = 4;
+    let version_flags = u32::from_le_bytes(take(bytes, &mut at, 4)?.try_into().unwrap());
+    if version_flags & 0xff != 2 {
+        return Err(format!("unsupported EXR version {}", version_flags & 0xff));
+    }
+    if version_flags & (DEEP_BIT | MULTIPART_BIT) != 0 {
+        return Err("multi-part and deep EXR files are not supported".into());
+    }
+    let mut attributes = Vec::new();
+    loop {
+        let start = at;
+        let name = cstr(bytes, &mut at)?;
+        if name.is_empty() {
+            return Ok(RawHeader {
+                version_flags,
+                attributes,
+                end: start,
+            });
+        }
+        let kind = cstr(bytes, &mut at)?;
+        let size = i32::from_le_bytes(take(bytes, &mut at, 4)?.try_into().unwrap());
+        let size = usize::try_from(size).map_err(|_| "negative EXR attribute size")?;
+        let value = take(bytes, &mut at, size)?;
+        attributes.push(RawAttribute { name, kind, value });
+    }
+}
+
+/// Inserts string attributes at the end of the header of a single-part scanline file written
+/// by the `exr` crate, shifting the chunk offsets by the inserted length.
+fn splice_attributes(file: &[u8], attributes: &[(Vec<u8>, Vec<u8>)]) -> Result<Vec<u8>, String> {
+    let header = scan_header(file)?;
+    if header.version_flags & TILED_BIT != 0 {
+        return Err("expected a scanline file".into());
+    }
+    let chunk_count = header
+        .attributes
+        .iter()
+        .find(|a| a.name == b"chunkCount" && a.kind == b"int" && a.value.len() == 4)
+        .map(|a| i32::from_le_bytes(a.value.try_into().unwrap()))
+        .ok_or("the exr crate wrote no chunkCount attribute")?;
+    let chunk_count = usize::try_from(chunk_count).map_err(|_| "negative chunkCount")?;
+
+    let mut block = Vec::new();
+    for (name, value) in attributes {
+        block.extend_from_slice(name);
+        block.push(0);
+        block.extend_from_slice(b"string\0");
+        block.extend_from_slice(&(value.len() as i32).to_le_bytes());
+        block.extend_from_slice(value);
+    }
+    let delta = block.len() as u64;
+    let table_start = header.end + 1;
+    let table_end = table_start + 8 * chunk_count;
+    if file.len() < table_end {
+        return Err("the EXR offset table is truncated".into());
+    }
+
+    let mut out = Vec::with_capacity(file.len() + block.len());
+    out.extend_from_slice(&file[..header.end]);
+    out.extend_from_slice(&block);
+    out.push(0);
+    for entry in file[table_start..table_end].chunks_exact(8) {
+        let offset = u64::from_le_bytes(entry.try_into().unwrap());
+        out.extend_from_slice(&(offset + delta).to_le_bytes());
+    }
+    out.extend_from_slice(&file[table_end..]);
+    if attributes.iter().any(|(n, _)| n.len() > SHORT_NAME_MAX) {
+        let flags = header.version_flags | LONG_NAMES_BIT;
+        out[4..8].copy_from_slice(&flags.to_le_bytes());
+    }
+    Ok(out)
+}
+
+/// Reads an EXR file (any single-layer flat image, not only ours) with the `exr` crate, for
+/// tests and inspection. String attributes are read from the header in file order; the
+/// standard ones (e.g. `type`, `name`) are left out.
+pub fn decode_exr(bytes: &[u8]) -> Result<DecodedExr, String> {
+    let header = scan_header(bytes)?;
+    let attributes = header
+        .attributes
+        .iter()
+        .filter(|a| a.kind == b"string" && !standard_names::ALL.contains(&a.name))
+        .map(|a| {
+            (
+                String::from_utf8_lossy(a.name).into_owned(),
+                String::from_utf8_lossy(a.value).into_owned(),
+            )
+        })
+        .collect();
+
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .pedantic()
+        .non_parallel()
+        .from_buffered(Cursor::new(bytes))
+        .map_err(|e| format!("reading EXR: {e}"))?;
+    let [layer] = &image.layer_data[..] else {
+        return Err(format!(
+            "expected one layer, the file has {}",
+            image.layer_data.len()
+        ));
+    };
+    let channels = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| {
+            let values = match &c.sample_data {
+                FlatSamples::F16(v) => v.iter().map(|h| h.to_f32()).collect(),
+                FlatSamples::F32(v) => v.clone(),
+                FlatSamples::U32(v) => v.iter().map(|&u| u as f32).collect(),
+            };
+            (String::from(c.name.clone()), values)
+        })
+        .collect();
+    Ok((layer.size.0, layer.size.1, channels, attributes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lut::{Axis, Channel, Convention, Quantity};
+
+    fn axis(name: &str, size: usize) -> Axis {
+        Axis {
+            name: name.into(),
+            quantity: Quantity::Cosine,
+            size,
+            range: [0.0, 1.0],
+            convention: Convention::Centers,
+        }
+    }
+
+    fn lut(sizes: &[usize], names: &[&str], f: impl Fn(usize, usize) -> f32) -> Lut {
+        let axes: Vec<Axis> = sizes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| axis(&format!("axis{k}"), n))
+            .collect();
+        let texels: usize = sizes.iter().product();
+        let data = (0..texels)
+            .flat_map(|t| (0..names.len()).map(move |c| (t, c)))
+            .map(|(t, c)| f(t, c))
+            .collect();
+        Lut {
+            axes,
+            channels: names
+                .iter()
+                .map(|n| Channel {
+                    name: n.to_string(),
+                    meaning: format!("test {n}"),
+                })
+                .collect(),
+            data,
+            error_estimate: vec![0.0; names.len()],
+            evaluations: 0,
+        }
+    }
+
+    fn encoder(storage: Storage) -> ExrEncoder {
+        ExrEncoder {
+            storage,
+            table_name: "test".into(),
+        }
+    }
+
+    fn attrs(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+        pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect()
+    }
+
+    /// Channel `name` of a decoded file.
+    fn plane<'a>(decoded: &'a DecodedExr, name: &str) -> &'a [f32] {
+        &decoded.2.iter().find(|(n, _)| n == name).unwrap().1
+    }
+
+    #[test]
+    fn f32_round_trip_layout_and_attributes() {
+        let t = lut(&[5, 3], &["B", "A"], |t, c| {
+            (t as f32 * 0.37 - 1.5) * if c == 0 { 1.0 } else { -1e-30 }
+        });
+        let a = attrs(&[
+            ("zeta", "last key first"),
+            ("alpha", "E(μ) = ∫ f cos θ dω"),
+            ("other:ns", "kept as is"),
+            ("a_rather_long_attribute_key_name", "long names flag"),
+            ("empty", ""),
+        ]);
+        let bytes = encoder(Storage::F32).encode(&t, &a).unwrap();
+        let d = decode_exr(&bytes).unwrap();
+        assert_eq!((d.0, d.1), (5, 3));
+        let names: Vec<&str> = d.2.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["A", "B"]);
+        for (c, name) in ["B", "A"].iter().enumerate() {
+            let expected: Vec<f32> = t.data.iter().skip(c).step_by(2).copied().collect();
+            assert_eq!(plane(&d, name), &expected[..]);
+        }
+        let expected_attrs = attrs(&[
+            ("brdfbake:zeta", "last key first"),
+            ("brdfbake:alpha", "E(μ) = ∫ f cos θ dω"),
+            ("other:ns", "kept as is"),
+            (
+                "brdfbake:a_rather_long_attribute_key_name",
+                "long names flag",
+            ),
+            ("brdfbake:empty", ""),
+        ]);
+        assert_eq!(d.3, expected_attrs);
+    }
+
+    #[test]
+    fn encoding_is_deterministic() {
+        let t = lut(&[7, 4, 3], &["x", "y", "z"], |t, c| {
+            (t * 3 + c) as f32 / 7.0
+        });
+        let a: Vec<(String, String)> = (0..24)
+            .map(|i| (format!("key{i}"), format!("value {i}")))
+            .collect();
+        for storage in [Storage::F32, Storage::F16] {
+            let first = encoder(storage).encode(&t, &a).unwrap();
+            for _ in 0..16 {
+                assert_eq!(encoder(storage).encode(&t, &a).unwrap(), first);
+            }
+            let from_thread = std::thread::scope(|s| {
+                s.spawn(|| encoder(storage).encode(&t, &a).unwrap())
+                    .join()
+                    .unwrap()
+            });
+            assert_eq!(from_thread, first);
+        }
+    }
+
+    #[test]
+    fn slices_stack_vertically_and_1d_is_one_row() {
+        let t = lut(&[4, 3, 2], &["v"], |t, _| t as f32);
+        let d = decode_exr(&encoder(Storage::F32).encode(&t, &[]).unwrap()).unwrap();
+        assert_eq!((d.0, d.1), (4, 6));
+        // image row r = z·ny + y; pixel (x, r) holds texel [x, y, z]
+        for z in 0..2 {
+            for y in 0..3 {
+                for x in 0..4 {
+                    assert_eq!(plane(&d, "v")[(z * 3 + y) * 4 + x], t.texel([x, y, z], 0));
+                }
+            }
+        }
+        let t = lut(&[9], &["E"], |t, _| t as f32 * 0.5);
+        let d = decode_exr(&encoder(Storage::F16).encode(&t, &[]).unwrap()).unwrap();
+        assert_eq!((d.0, d.1), (9, 1));
+        assert_eq!(plane(&d, "E"), &t.data[..]);
+    }
+
+    /// Ties round to the even neighbour: 1 + 2⁻¹¹ lies halfway between 1 (even mantissa) and
+    /// 1 + 2⁻¹⁰ (odd), 1 + 3·2⁻¹¹ halfway between 1 + 2⁻¹⁰ (odd) and 1 + 2⁻⁹ (even).
+    #[test]
+    fn f16_rounds_to_nearest_even() {
+        let tie_down = 1.0 + 2f32.powi(-11);
+        let tie_up = 1.0 + 3.0 * 2f32.powi(-11);
+        let above_tie = f32::from_bits(tie_down.to_bits() + 1);
+        let values = [tie_down, tie_up, above_tie, -tie_down, 65519.0, 1e-8];
+        let t = lut(&[values.len()], &["v"], |t, _| values[t]);
+        let d = decode_exr(&encoder(Storage::F16).encode(&t, &[]).unwrap()).unwrap();
+        let expected = [
+            1.0,
+            1.0 + 2f32.powi(-9),
+            1.0 + 2f32.powi(-10),
+            -1.0,
+            65504.0,
+            f16::from_f32(1e-8).to_f32(),
+        ];
+        assert_eq!(plane(&d, "v"), &expected[..]);
+        for (v, e) in values.iter().zip(expected) {
+            assert_eq!(f16::from_f32(*v).to_f32(), e);
+        }
+    }
+
+    #[test]
+    fn f16_overflow_is_an_error_naming_the_largest_value() {
+        for (bad, largest) in [(65520.0f32, 65520.0), (-7e4, -1e5)] {
+            let t = lut(&[4], &["ok", "big"], |t, c| match (t, c) {
+                (_, 0) => 1.0,
+                (1, _) => bad,
+                (2, _) if largest != bad => largest,
+                _ => 2.0,
+            });
+            let err = encoder(Storage::F16).encode(&t, &[]).unwrap_err();
+            match &err {
+                EncodeError::Unrepresentable {
+                    table,
+                    channel,
+                    value,
+                    ..
+                } => {
+                    assert_eq!((table.as_str(), channel.as_str()), ("test", "big"));
+                    assert_eq!(*value, largest as f64);
+                }
+                other => panic!("unexpected error {other:?}"),
+            }
+            assert!(err.to_string().contains("`big`"), "{err}");
+            // f32 storage holds it
+            assert!(encoder(Storage::F32).encode(&t, &[]).is_ok());
+        }
+    }
+
+    #[test]
+    fn non_finite_values_shape_and_names_are_errors() {
+        let t = lut(&[3, 2], &["v"], |t, _| if t == 4 { f32::NAN } else { 0.0 });
+        for storage in [Storage::F32, Storage::F16] {
+            match encoder(storage).encode(&t, &[]).unwrap_err() {
+                EncodeError::NonFinite { texel, .. } => assert_eq!(texel, [1, 1, 0]),
+                other => panic!("unexpected error {other:?}"),
+            }
+        }
+        let mut t = lut(&[3, 2], &["v"], |_, _| 0.0);
+        t.data.pop();
+        assert!(matches!(
+            encoder(Storage::F32).encode(&t, &[]),
+            Err(EncodeError::Shape { .. })
+        ));
+        let t = lut(&[3], &["v", "v"], |_, _| 0.0);
+        assert!(matches!(
+            encoder(Storage::F32).encode(&t, &[]),
+            Err(EncodeError::ChannelName { .. })
+        ));
+        let t = lut(&[3], &["v"], |_, _| 0.0);
+        for bad in [
+            attrs(&[("a", "1"), ("brdfbake:a", "2")]),
+            attrs(&[("", "x")]),
+            attrs(&[("nul\0", "x")]),
+            vec![("k".repeat(256), String::new())],
+        ] {
+            assert!(
+                matches!(
+                    encoder(Storage::F32).encode(&t, &bad),
+                    Err(EncodeError::Attribute { .. })
+                ),
+                "{bad:?}"
+            );
+        }
+    }
+}

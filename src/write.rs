@@ -1,0 +1,284 @@
+//! The only code that writes output files. Every file is written to a temporary file in its
+//! target directory, flushed to disk, and renamed over the target, so a reader sees either
+//! the old file or the complete new one — never a partial file.
+
+use std::fs::{self, OpenOptions};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Why [`write_all_atomic`] failed.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    /// The same path was given twice.
+    #[error("{} is listed twice among the files to write; no output file was changed", .0.display())]
+    DuplicatePath(PathBuf),
+    /// Writing a temporary file failed; no output file was changed.
+    #[error("{source}; no output file was changed")]
+    Prepare { path: PathBuf, source: io::Error },
+    /// Renaming a finished temporary file over its target failed. The files in `committed`
+    /// had already been replaced; the others are unchanged.
+    #[error("{source}; {} of {total} output files had already been replaced", .committed.len())]
+    Commit {
+        path: PathBuf,
+        source: io::Error,
+        committed: Vec<PathBuf>,
+        total: usize,
+    },
+}
+
+/// Atomically replaces (or creates) `path` with `bytes`. On error nothing is left behind
+/// and the error message names the path.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let tmp = prepare(path, bytes)?;
+    commit(&tmp, path)?;
+    sync_dir(parent(path));
+    Ok(())
+}
+
+/// Atomically replaces (or creates) several files: first every temporary file is written
+/// and flushed, then all are renamed. A failure while writing changes no output file; the
+/// temporary files are always removed.
+pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> {
+    for (i, (path, _)) in files.iter().enumerate() {
+        if files[..i].iter().any(|(other, _)| other == path) {
+            return Err(WriteError::DuplicatePath(path.clone()));
+        }
+    }
+
+    let mut temps: Vec<PathBuf> = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        match prepare(path, bytes) {
+            Ok(tmp) => temps.push(tmp),
+            Err(source) => {
+                for tmp in &temps {
+                    let _ = fs::remove_file(tmp);
+                }
+                return Err(WriteError::Prepare {
+                    path: path.clone(),
+                    source,
+                });
+            }
+        }
+    }
+
+    let mut committed: Vec<PathBuf> = Vec::with_capacity(files.len());
+    for (i, ((path, _), tmp)) in files.iter().zip(&temps).enumerate() {
+        if let Err(source) = commit(tmp, path) {
+            for tmp in &temps[i + 1..] {
+                let _ = fs::remove_file(tmp);
+            }
+            sync_dirs(&committed);
+            return Err(WriteError::Commit {
+                path: path.clone(),
+                source,
+                committed,
+                total: files.len(),
+            });
+        }
+        committed.push(path.clone());
+    }
+    sync_dirs(&committed);
+    Ok(())
+}
+
+/// `io::Error` of the same kind, with `what` and the path in the message.
+fn describe(e: io::Error, what: &str, path: &Path) -> io::Error {
+    io::Error::new(e.kind(), format!("{what} {}: {e}", path.display()))
+}
+
+/// The directory `path` is in (`.` for a bare file name).
+fn parent(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Writes `bytes` to a new temporary file next to `path` and flushes it to disk. Returns the
+/// temporary file's path; on error no temporary file remains.
+fn prepare(path: &Path, bytes: &[u8]) -> io::Result<PathBuf> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("cannot write {}: not a file path", path.display()),
+        )
+    })?;
+    let tmp = parent(path).join(format!(
+        ".{}.tmp-{}-{}",
+        name.to_string_lossy(),
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let mut file = OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+        .map_err(|e| describe(e, "cannot create a temporary file for", path))?;
+    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    drop(file);
+    if let Err(e) = written {
+        let _ = fs::remove_file(&tmp);
+        return Err(describe(e, "cannot write", path));
+    }
+    Ok(tmp)
+}
+
+/// Renames the finished temporary file over `path`; removes it if that fails.
+fn commit(tmp: &Path, path: &Path) -> io::Result<()> {
+    fs::rename(tmp, path).map_err(|e| {
+        let _ = fs::remove_file(tmp);
+        describe(e, "cannot replace", path)
+    })
+}
+
+/// Flushes a directory entry change to disk (best effort; a no-op where directories cannot
+/// be opened).
+fn sync_dir(dir: &Path) {
+    #[cfg(unix)]
+    if let Ok(d) = fs::File::open(dir) {
+        let _ = d.sync_all();
+    }
+    #[cfg(not(unix))]
+    let _ = dir;
+}
+
+/// [`sync_dir`] on each distinct parent directory of `paths`.
+fn sync_dirs(paths: &[PathBuf]) {
+    let mut done: Vec<&Path> = Vec::new();
+    for p in paths {
+        let dir = parent(p);
+        if !done.contains(&dir) {
+            sync_dir(dir);
+            done.push(dir);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every entry of `dir`, sorted.
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn writes_and_replaces() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.exr");
+        write_atomic(&path, b"first").unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"first");
+        write_atomic(&path, b"second, longer").unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"second, longer");
+        write_atomic(&path, b"").unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"");
+        assert_eq!(entries(dir.path()), ["a.exr"]);
+    }
+
+    #[test]
+    fn missing_directory_is_an_error_naming_the_path() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("missing").join("a.exr");
+        let err = write_atomic(&path, b"x").unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::NotFound);
+        assert!(
+            err.to_string().contains(&path.display().to_string()),
+            "{err}"
+        );
+        assert!(entries(dir.path()).is_empty());
+    }
+
+    /// A target that cannot be replaced (a directory) fails at the rename; the temporary
+    /// file is removed.
+    #[test]
+    fn failed_rename_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("taken");
+        fs::create_dir(&path).unwrap();
+        fs::write(path.join("inside"), b"keep").unwrap();
+        let err = write_atomic(&path, b"x").unwrap_err();
+        assert!(
+            err.to_string().contains(&path.display().to_string()),
+            "{err}"
+        );
+        assert_eq!(entries(dir.path()), ["taken"]);
+        assert_eq!(fs::read(path.join("inside")).unwrap(), b"keep");
+    }
+
+    #[test]
+    fn write_all_changes_nothing_when_a_file_cannot_be_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let kept = dir.path().join("a.json");
+        fs::write(&kept, b"old").unwrap();
+        let files = vec![
+            (kept.clone(), b"new".to_vec()),
+            (dir.path().join("b.exr"), b"new".to_vec()),
+            (dir.path().join("missing").join("c.exr"), b"new".to_vec()),
+        ];
+        let err = write_all_atomic(&files).unwrap_err();
+        assert!(matches!(err, WriteError::Prepare { .. }), "{err:?}");
+        assert!(err.to_string().contains("c.exr"), "{err}");
+        assert_eq!(fs::read(&kept).unwrap(), b"old");
+        assert_eq!(entries(dir.path()), ["a.json"]);
+    }
+
+    #[test]
+    fn write_all_writes_every_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let sub = dir.path().join("sub");
+        fs::create_dir(&sub).unwrap();
+        fs::write(dir.path().join("a"), b"old").unwrap();
+        let files = vec![
+            (dir.path().join("a"), b"1".to_vec()),
+            (sub.join("b"), b"2".to_vec()),
+        ];
+        write_all_atomic(&files).unwrap();
+        assert_eq!(fs::read(dir.path().join("a")).unwrap(), b"1");
+        assert_eq!(fs::read(sub.join("b")).unwrap(), b"2");
+        assert_eq!(entries(dir.path()), ["a", "sub"]);
+        assert_eq!(entries(&sub), ["b"]);
+
+        let dup = vec![
+            (sub.join("b"), b"3".to_vec()),
+            (sub.join("b"), b"4".to_vec()),
+        ];
+        assert!(matches!(
+            write_all_atomic(&dup),
+            Err(WriteError::DuplicatePath(_))
+        ));
+        assert_eq!(fs::read(sub.join("b")).unwrap(), b"2");
+    }
+
+    /// A rename failing half-way reports which files were already replaced and removes the
+    /// remaining temporary files.
+    #[test]
+    fn write_all_reports_a_failed_commit() {
+        let dir = tempfile::tempdir().unwrap();
+        let blocked = dir.path().join("blocked");
+        fs::create_dir(&blocked).unwrap();
+        fs::write(blocked.join("x"), b"").unwrap();
+        let files = vec![
+            (dir.path().join("a"), b"1".to_vec()),
+            (blocked.clone(), b"2".to_vec()),
+            (dir.path().join("c"), b"3".to_vec()),
+        ];
+        match write_all_atomic(&files).unwrap_err() {
+            WriteError::Commit {
+                path, committed, ..
+            } => {
+                assert_eq!(path, blocked);
+                assert_eq!(committed, [dir.path().join("a")]);
+            }
+            other => panic!("unexpected error {other:?}"),
+        }
+        assert_eq!(entries(dir.path()), ["a", "blocked"]);
+    }
+}
