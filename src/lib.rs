@@ -1,9 +1,44 @@
 //! brdfbake: exact BRDF lookup tables for real-time renderers.
+//!
+//! The flow runs one way: a preset ([`preset`]) is validated into [`TableSpec`]s, each is
+//! baked ([`table`]) by quadrature ([`integrate`]) of the physics ([`model`]) into a [`Lut`],
+//! encoded by pure encoders ([`encode`]) with its metadata ([`meta`]), and written
+//! atomically by [`write`], the only module that touches the disk.
+//!
+//! ```
+//! use brdfbake::lut::{Axis, Convention, Quantity};
+//! use brdfbake::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
+//! use brdfbake::table::{bake, ModelSpec, Storage, TableKind, TableSpec};
+//!
+//! let spec = TableSpec {
+//!     name: "e".into(),
+//!     kind: TableKind::Albedo,
+//!     model: ModelSpec { ndf: Some(NdfKind::Ggx), masking: Masking::SmithHeightCorrelated,
+//!                        fresnel: Fresnel::None, diffuse_weight: 0.0 },
+//!     axes: vec![
+//!         Axis { name: "cos_theta_v".into(), quantity: Quantity::Cosine, size: 4,
+//!                range: [0.0, 1.0], convention: Convention::Centers },
+//!         Axis { name: "roughness".into(), quantity: Quantity::Roughness(RoughnessQuantity::Perceptual),
+//!                size: 4, range: [0.0, 1.0], convention: Convention::Centers },
+//!     ],
+//!     dfg_layout: None, cloth: false, storage: Storage::F32, tolerance: 1e-7,
+//! };
+//! let lut = bake(&spec).unwrap();
+//! let e = lut.lookup(&[0.5, 0.5])[0];
+//! assert!(e > 0.0 && e <= 1.0);
+//! ```
 
+pub mod cli;
+pub mod encode;
 pub mod integrate;
 pub mod lut;
+pub mod meta;
 pub mod model;
+pub mod pipeline;
+pub mod preset;
+pub mod presets;
 pub mod table;
+pub mod write;
 
 pub use lut::Lut;
 pub use table::{bake, TableSpec};

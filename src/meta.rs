@@ -1,0 +1,265 @@
+//! The JSON sidecar written next to every texture (schema `brdfbake.lut/1`, documented in
+//! `docs/metadata.md`): everything an engine needs to sample the texture without guessing.
+
+use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::table::{DfgLayout, Storage, TableKind, TableSpec};
+use serde_json::{json, Value};
+use sha2::{Digest, Sha256};
+
+/// The metadata schema identifier.
+pub const SCHEMA: &str = "brdfbake.lut/1";
+/// brdfbake's version, recorded in every output and in the input hash.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The canonical description of a table's inputs: what is hashed. Two specs with equal
+/// inputs produce byte-identical outputs.
+pub fn inputs(spec: &TableSpec) -> Value {
+    let m = &spec.model;
+    json!({
+        "kind": spec.kind.name(),
+        "model": {
+            "ndf": m.ndf.map(|n| n.name()),
+            "masking": m.masking.name(),
+            "fresnel": m.fresnel,
+            "diffuse": m.diffuse_weight,
+        },
+        "axes": spec.axes.iter().map(|a| json!({
+            "name": a.name,
+            "quantity": quantity_name(a),
+            "size": a.size,
+            "range": a.range,
+            "convention": a.convention.name(),
+        })).collect::<Vec<_>>(),
+        "layout": spec.dfg_layout,
+        "cloth": spec.cloth,
+        "storage": spec.storage,
+        "tolerance": spec.tolerance,
+    })
+}
+
+/// `sha256:<hex>` of the canonical inputs and brdfbake's version.
+pub fn input_hash(spec: &TableSpec) -> String {
+    let mut h = Sha256::new();
+    h.update(b"brdfbake ");
+    h.update(VERSION.as_bytes());
+    h.update(b"\n");
+    h.update(
+        serde_json::to_string(&inputs(spec))
+            .expect("serializable")
+            .as_bytes(),
+    );
+    let d = h.finalize();
+    let hex: String = d.iter().map(|b| format!("{b:02x}")).collect();
+    format!("sha256:{hex}")
+}
+
+fn quantity_name(a: &Axis) -> String {
+    match a.quantity {
+        Quantity::Cosine => "cosine".into(),
+        Quantity::Roughness(q) => format!("roughness:{}", q.name()),
+    }
+}
+
+fn texture_axis(k: usize) -> &'static str {
+    ["u", "v", "w (slice)"][k]
+}
+
+fn axis_json(k: usize, a: &Axis) -> Value {
+    let [lo, hi] = a.range;
+    let (texel, remap) = match a.convention {
+        Convention::Centers => (
+            format!("x_i = {lo} + ({hi} - {lo}) * (i + 0.5) / {}", a.size),
+            format!("t = (x - {lo}) / ({hi} - {lo}); sample at t directly (texel centres hold the values)"),
+        ),
+        Convention::Endpoints => (
+            format!("x_i = {lo} + ({hi} - {lo}) * i / ({} - 1)", a.size),
+            format!(
+                "t = (x - {lo}) / ({hi} - {lo}); sample at (0.5 + t * ({n} - 1)) / {n} (half-texel remap: the range ends are texel centres)",
+                n = a.size
+            ),
+        ),
+    };
+    let mut v = json!({
+        "name": a.name,
+        "texture_axis": texture_axis(k),
+        "quantity": quantity_name(a),
+        "size": a.size,
+        "range": a.range,
+        "convention": a.convention.name(),
+        "texel_coordinate": texel,
+        "shader_texture_coordinate": remap,
+        "coordinates": a.coords(),
+    });
+    if let Quantity::Roughness(q) = a.quantity {
+        v["alpha_mapping"] = json!(q.mapping());
+        v["alpha"] = json!((0..a.size)
+            .map(|i| a.alpha(i).unwrap_or(f64::NAN))
+            .collect::<Vec<_>>());
+    }
+    v
+}
+
+/// How a shader uses the channels.
+pub fn reconstruction(spec: &TableSpec) -> &'static str {
+    match spec.kind {
+        TableKind::Ndf => "D(n.h) in the modern form: f = D G F / (4 (n.l)(n.v)). The lecture's Cook-Torrance D_CT = (pi/4) D.",
+        TableKind::G1 => "G1(cos theta); Smith G2 separable = G1(v) G1(l), height-correlated = 1/(1/G1(v) + 1/G1(l) - 1).",
+        TableKind::G2 => "G2(n.v, n.l) in f = D G2 F / (4 (n.l)(n.v)).",
+        TableKind::Vgroove => "G(n.l, n.h, n.v) in Cook-Torrance's f_s = F D_CT G / (pi (n.l)(n.v)); use only where realizable = 1.",
+        TableKind::Albedo => "E(mu): fraction of light reflected for a view at cos theta_v = mu under uniform white illumination; energy lost to single scattering is 1 - E.",
+        TableKind::AlbedoAvg => "E_avg; Kulla-Conty multiple scattering lobe f_ms(mu_o, mu_i) = (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).",
+        TableKind::Dfg => match spec.dfg_layout {
+            Some(DfgLayout::Karis) => "specular = prefiltered_radiance * (F0 * A + B) (Karis 2013 split sum, Schlick Fresnel).",
+            _ => "E = (1 - F0) * R + F0 * G = mix(R, G, F0); multiscatter energy compensation: specular *= 1 + F0 * (1 / G - 1); cloth: sheen = prefiltered * B (Filament).",
+        },
+    }
+}
+
+/// The `model` object.
+fn model_json(spec: &TableSpec) -> Value {
+    let m = &spec.model;
+    let ndf = m.ndf.map(|n| {
+        json!({
+            "name": n.name(),
+            "formula": n.formula(),
+            "source": n.source(),
+            "lambda": if n.closed_form_lambda() { "closed form" } else { "derived numerically from D (Smith normalization, Heitz 2014), piecewise-Chebyshev to 1e-11" },
+        })
+    });
+    let mut v = json!({
+        "form": "modern: f = w_s D G F / (4 (n.l)(n.v)) + w_d / pi, with int D (n.h) dw_h = 1",
+        "cook_torrance_form": "equivalent to the lecture's f_s = (1/pi) F D_CT G / ((n.l)(n.v)) with D_CT = (pi/4) D (its D carries a 1/4, its f_s a 1/pi)",
+        "ndf": ndf,
+        "masking": {"name": m.masking.name(), "formula": m.masking.formula(), "source": m.masking.source()},
+        "fresnel": {"name": m.fresnel.name(), "formula": m.fresnel.formula(), "parameters": m.fresnel},
+        "diffuse": {"name": if m.diffuse_weight > 0.0 { "lambert" } else { "none" }, "weight": m.diffuse_weight, "formula": "f_d = w_d / pi"},
+    });
+    if spec.kind == TableKind::Dfg {
+        v["split_sum"] = json!({
+            "fresnel_weight": "Fc = (1 - v.h)^5 (Schlick); f is evaluated with F = 1",
+            "layout": spec.dfg_layout,
+        });
+        if spec.cloth {
+            v["cloth"] = json!({
+                "ndf": {"name": "charlie", "formula": crate::model::NdfKind::Charlie.formula(), "source": crate::model::NdfKind::Charlie.source()},
+                "visibility": crate::model::Masking::Ashikhmin.formula(),
+                "alpha": "the same alpha as the specular channels (roughness axis mapping)",
+            });
+        }
+    }
+    v
+}
+
+/// The full sidecar for a baked table. `files` maps format names to file names.
+pub fn metadata(preset: &str, spec: &TableSpec, lut: &Lut, files: &[(&str, String)]) -> Value {
+    let dims: Vec<usize> = lut.axes.iter().map(|a| a.size).collect();
+    let (texel_type, rounding) = match spec.storage {
+        Storage::F32 => (
+            "f32",
+            "round to nearest f32: relative 2^-24 (6e-8 for values <= 1)",
+        ),
+        Storage::F16 => (
+            "f16",
+            "round to nearest even f16: relative 2^-11 (4.9e-4 for values <= 1)",
+        ),
+    };
+    let err: serde_json::Map<String, Value> = lut
+        .channels
+        .iter()
+        .zip(&lut.error_estimate)
+        .map(|(c, e)| (c.name.clone(), json!(e)))
+        .collect();
+    let method = match spec.kind {
+        TableKind::Ndf | TableKind::Vgroove => "closed form, evaluated in f64".to_string(),
+        TableKind::G1 | TableKind::G2 => match spec.model.ndf {
+            Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
+            _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
+        },
+        _ => "nested adaptive Gauss-Kronrod (G7/K15) over the half vector: phi in [0, pi] (split at pi/2, doubled by symmetry), theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) with the lobe warp u = asinh(tan theta_h / alpha); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
+    };
+    let mut layout = format!(
+        "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
+        if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }
+    );
+    if dims.len() == 3 {
+        layout.push_str(&format!(
+            "; image files stack the {} slices vertically: slice z occupies rows [z*{ny}, (z+1)*{ny})",
+            dims[2],
+            ny = dims[1]
+        ));
+    }
+    json!({
+        "schema": SCHEMA,
+        "generator": {"name": "brdfbake", "version": VERSION},
+        "input_hash": input_hash(spec),
+        "preset": preset,
+        "table": {
+            "name": spec.name,
+            "kind": spec.kind.name(),
+            "description": spec.kind.description(),
+            "dimensions": dims.len(),
+            "size": dims,
+        },
+        "model": model_json(spec),
+        "axes": lut.axes.iter().enumerate().map(|(k, a)| axis_json(k, a)).collect::<Vec<_>>(),
+        "channels": lut.channels.iter().enumerate().map(|(i, c)| json!({"index": i, "name": c.name, "meaning": c.meaning})).collect::<Vec<_>>(),
+        "reconstruction": reconstruction(spec),
+        "storage": {
+            "texel_type": texel_type,
+            "rounding": rounding,
+            "layout": layout,
+            "row_order": "the first row in the file is y = 0 (the first coordinate of axis 1); upload it as the first row in memory, which every graphics API maps to texture coordinate v = 0: no y-flip",
+            "sampling": "linear filtering, clamp-to-edge; coordinates per axis as in axes[k].shader_texture_coordinate",
+        },
+        "quadrature": {
+            "method": method,
+            "tolerance": spec.tolerance,
+            "estimated_max_error": err,
+            "evaluations": lut.evaluations,
+        },
+        "files": files.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+    })
+}
+
+/// A few key facts as string pairs for image-file headers.
+pub fn header_attributes(preset: &str, spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
+    let mut v = vec![
+        ("schema".to_string(), SCHEMA.to_string()),
+        ("version".to_string(), VERSION.to_string()),
+        ("input_hash".to_string(), input_hash(spec)),
+        ("preset".to_string(), preset.to_string()),
+        ("table".to_string(), spec.name.clone()),
+        ("kind".to_string(), spec.kind.name().to_string()),
+        ("model".to_string(), model_summary(spec)),
+    ];
+    for (k, a) in lut.axes.iter().enumerate() {
+        v.push((
+            format!("axis{k}"),
+            format!(
+                "{} {} {} [{}, {}] {} texels",
+                a.name,
+                quantity_name(a),
+                a.convention.name(),
+                a.range[0],
+                a.range[1],
+                a.size
+            ),
+        ));
+    }
+    v
+}
+
+/// One-line model description, e.g. `ggx / smith-height-correlated / fresnel none`.
+pub fn model_summary(spec: &TableSpec) -> String {
+    let m = &spec.model;
+    let mut s = format!(
+        "{} / {} / fresnel {}",
+        m.ndf.map_or("no specular", |n| n.name()),
+        m.masking.name(),
+        m.fresnel.name()
+    );
+    if m.diffuse_weight > 0.0 {
+        s.push_str(&format!(" + lambert {}", m.diffuse_weight));
+    }
+    s
+}

@@ -1,0 +1,495 @@
+//! Presets: JSON files that name one or more tables to bake (schema `brdfbake.preset/1`,
+//! documented in `docs/presets.md`). Parsing is strict — unknown fields, duplicate keys and
+//! wrong types are errors that name the field's path, and every value is checked against
+//! what is accepted before anything is baked.
+
+use crate::lut::{Axis, Convention, Quantity};
+use crate::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
+use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+use serde::Deserialize;
+use std::path::Path;
+
+/// The preset schema identifier.
+pub const SCHEMA: &str = "brdfbake.preset/1";
+/// Default per-texel quadrature tolerance (estimated absolute error).
+pub const DEFAULT_TOLERANCE: f64 = 1e-7;
+/// Largest preset file accepted.
+pub const MAX_PRESET_BYTES: u64 = 1 << 20;
+
+/// Output formats a table can be written in (the JSON sidecar is always written).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Format {
+    Exr,
+}
+
+/// A parsed, validated preset.
+#[derive(Clone, Debug)]
+pub struct Preset {
+    pub name: String,
+    pub description: String,
+    pub tables: Vec<PresetTable>,
+}
+
+/// One table of a preset.
+#[derive(Clone, Debug)]
+pub struct PresetTable {
+    pub spec: TableSpec,
+    pub formats: Vec<Format>,
+}
+
+/// Why a preset was rejected.
+#[derive(Debug, thiserror::Error)]
+pub enum PresetError {
+    #[error("{source_name}: invalid JSON at line {line}, column {column}: {msg}")]
+    Syntax {
+        source_name: String,
+        line: usize,
+        column: usize,
+        msg: String,
+    },
+    #[error("{source_name}: {path}: {msg}")]
+    Field {
+        source_name: String,
+        path: String,
+        msg: String,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPreset {
+    schema: String,
+    #[serde(default)]
+    description: String,
+    tables: Vec<RawTable>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTable {
+    name: String,
+    kind: TableKind,
+    #[serde(default)]
+    model: Option<RawModel>,
+    axes: RawAxes,
+    #[serde(default)]
+    layout: Option<DfgLayout>,
+    #[serde(default)]
+    cloth: Option<bool>,
+    #[serde(default)]
+    storage: Option<Storage>,
+    #[serde(default)]
+    tolerance: Option<f64>,
+    #[serde(default)]
+    formats: Option<Vec<Format>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawModel {
+    #[serde(default)]
+    ndf: Option<NdfKind>,
+    #[serde(default)]
+    masking: Option<Masking>,
+    #[serde(default)]
+    fresnel: Option<Fresnel>,
+    #[serde(default)]
+    diffuse: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawAxes {
+    cos_theta: Option<RawAxis>,
+    cos_theta_v: Option<RawAxis>,
+    cos_theta_l: Option<RawAxis>,
+    cos_theta_h: Option<RawAxis>,
+    n_dot_l: Option<RawAxis>,
+    n_dot_h: Option<RawAxis>,
+    n_dot_v: Option<RawAxis>,
+    roughness: Option<RawAxis>,
+}
+
+impl RawAxes {
+    fn take(&mut self, name: &str) -> Option<RawAxis> {
+        match name {
+            "cos_theta" => self.cos_theta.take(),
+            "cos_theta_v" => self.cos_theta_v.take(),
+            "cos_theta_l" => self.cos_theta_l.take(),
+            "cos_theta_h" => self.cos_theta_h.take(),
+            "n_dot_l" => self.n_dot_l.take(),
+            "n_dot_h" => self.n_dot_h.take(),
+            "n_dot_v" => self.n_dot_v.take(),
+            "roughness" => self.roughness.take(),
+            _ => None,
+        }
+    }
+
+    fn remaining(&self) -> Vec<&'static str> {
+        let mut v = Vec::new();
+        let all = [
+            ("cos_theta", &self.cos_theta),
+            ("cos_theta_v", &self.cos_theta_v),
+            ("cos_theta_l", &self.cos_theta_l),
+            ("cos_theta_h", &self.cos_theta_h),
+            ("n_dot_l", &self.n_dot_l),
+            ("n_dot_h", &self.n_dot_h),
+            ("n_dot_v", &self.n_dot_v),
+            ("roughness", &self.roughness),
+        ];
+        for (n, a) in all {
+            if a.is_some() {
+                v.push(n);
+            }
+        }
+        v
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawAxis {
+    size: usize,
+    #[serde(default)]
+    range: Option<[f64; 2]>,
+    #[serde(default)]
+    convention: Option<Convention>,
+    #[serde(default)]
+    quantity: Option<RoughnessQuantity>,
+}
+
+/// Parses a preset from JSON text. `source_name` is used in messages (a path or a name),
+/// `name` is the preset's name (its file stem).
+pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, PresetError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let raw: RawPreset = serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        if inner.is_syntax() || inner.is_eof() || path == "." {
+            PresetError::Syntax {
+                source_name: source_name.into(),
+                line: inner.line(),
+                column: inner.column(),
+                msg: strip_position(&inner.to_string()),
+            }
+        } else {
+            PresetError::Field {
+                source_name: source_name.into(),
+                path,
+                msg: format!(
+                    "{} (line {}, column {})",
+                    strip_position(&inner.to_string()),
+                    inner.line(),
+                    inner.column()
+                ),
+            }
+        }
+    })?;
+    let field = |path: String, msg: String| PresetError::Field {
+        source_name: source_name.into(),
+        path,
+        msg,
+    };
+    if raw.schema != SCHEMA {
+        return Err(field(
+            "schema".into(),
+            format!("expected {SCHEMA:?}, got {:?}", raw.schema),
+        ));
+    }
+    if raw.tables.is_empty() {
+        return Err(field(
+            "tables".into(),
+            "a preset needs at least one table".into(),
+        ));
+    }
+    if raw.tables.len() > 64 {
+        return Err(field(
+            "tables".into(),
+            format!("at most 64 tables per preset, got {}", raw.tables.len()),
+        ));
+    }
+    let mut tables = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for (i, t) in raw.tables.into_iter().enumerate() {
+        let at = |f: &str| format!("tables[{i}].{f}");
+        if !valid_name(&t.name) {
+            return Err(field(
+                at("name"),
+                format!(
+                    "{:?} is not a valid file stem: use 1-64 characters from a-z, A-Z, 0-9, '-', '_', not starting with '-'",
+                    t.name
+                ),
+            ));
+        }
+        if !seen.insert(t.name.clone()) {
+            return Err(field(
+                at("name"),
+                format!("{:?} is used by two tables of this preset", t.name),
+            ));
+        }
+        let spec = table_spec(
+            t.name.clone(),
+            t.kind,
+            t.model,
+            t.axes,
+            t.layout,
+            t.cloth,
+            t.storage,
+            t.tolerance,
+        )
+        .map_err(|(p, m)| field(at(&p), m))?;
+        spec.validate()
+            .map_err(|m| field(format!("tables[{i}]"), m))?;
+        let formats = t.formats.unwrap_or_else(|| vec![Format::Exr]);
+        if formats.is_empty() {
+            return Err(field(
+                at("formats"),
+                "list at least one format (accepted: \"exr\")".into(),
+            ));
+        }
+        tables.push(PresetTable { spec, formats });
+    }
+    Ok(Preset {
+        name: name.into(),
+        description: raw.description,
+        tables,
+    })
+}
+
+/// Reads and parses a preset file (at most [`MAX_PRESET_BYTES`]).
+pub fn load(path: &Path) -> Result<Preset, LoadError> {
+    let meta = std::fs::metadata(path).map_err(|e| LoadError::Io(path.display().to_string(), e))?;
+    if meta.is_dir() {
+        return Err(LoadError::Input(format!(
+            "{}: is a directory, not a preset file",
+            path.display()
+        )));
+    }
+    if meta.len() > MAX_PRESET_BYTES {
+        return Err(LoadError::Input(format!(
+            "{}: {} bytes; presets are at most {MAX_PRESET_BYTES} bytes",
+            path.display(),
+            meta.len()
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(|e| LoadError::Io(path.display().to_string(), e))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        LoadError::Input(format!(
+            "{}: not UTF-8 text (invalid byte at offset {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        ))
+    })?;
+    let name = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("preset")
+        .to_string();
+    parse(&text, &path.display().to_string(), &name).map_err(|e| LoadError::Input(e.to_string()))
+}
+
+/// Why a preset could not be loaded: bad input (exit 2) or the environment (exit 1).
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    #[error("{0}")]
+    Input(String),
+    #[error("cannot read {0}: {1}")]
+    Io(String, #[source] std::io::Error),
+}
+
+fn valid_name(s: &str) -> bool {
+    !s.is_empty()
+        && s.len() <= 64
+        && !s.starts_with('-')
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+}
+
+/// serde_json appends " at line L column C"; we report the position ourselves.
+fn strip_position(s: &str) -> String {
+    match s.rfind(" at line ") {
+        Some(i) => s[..i].to_string(),
+        None => s.to_string(),
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn table_spec(
+    name: String,
+    kind: TableKind,
+    model: Option<RawModel>,
+    mut axes: RawAxes,
+    layout: Option<DfgLayout>,
+    cloth: Option<bool>,
+    storage: Option<Storage>,
+    tolerance: Option<f64>,
+) -> Result<TableSpec, (String, String)> {
+    let masking_list = Masking::ALL
+        .iter()
+        .map(|m| m.name())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let model = match model {
+        Some(m) => m,
+        None if kind == TableKind::Vgroove => RawModel {
+            ndf: None,
+            masking: Some(Masking::VGroove),
+            fresnel: None,
+            diffuse: None,
+        },
+        None => {
+            return Err((
+                "model".into(),
+                format!("a {} table needs a model object", kind.name()),
+            ))
+        }
+    };
+    let masking = match (model.masking, kind) {
+        (Some(m), _) => m,
+        (None, TableKind::Ndf) => Masking::None,
+        (None, TableKind::G1) => Masking::SmithSeparable,
+        (None, TableKind::Vgroove) => Masking::VGroove,
+        (None, _) => {
+            return Err((
+                "model.masking".into(),
+                format!(
+                    "is required for a {} table (accepted: {masking_list})",
+                    kind.name()
+                ),
+            ))
+        }
+    };
+    if kind == TableKind::G1 && !masking.is_smith() {
+        return Err((
+            "model.masking".into(),
+            "a g1 table is Smith's G1 by definition: omit masking or use smith-separable / smith-height-correlated".into(),
+        ));
+    }
+    let model = ModelSpec {
+        ndf: model.ndf,
+        masking,
+        fresnel: model.fresnel.unwrap_or(Fresnel::None),
+        diffuse_weight: model.diffuse.unwrap_or(0.0),
+    };
+    let mut out_axes = Vec::new();
+    for &an in kind.axis_names() {
+        let raw = axes.take(an).ok_or_else(|| {
+            (
+                format!("axes.{an}"),
+                format!(
+                    "is required for a {} table (its axes: {})",
+                    kind.name(),
+                    kind.axis_names().join(", ")
+                ),
+            )
+        })?;
+        let is_rough = an == "roughness";
+        let quantity = match (is_rough, raw.quantity) {
+            (true, Some(q)) => Quantity::Roughness(q),
+            (true, None) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    format!(
+                        "is required: say what the roughness axis means (accepted: {})",
+                        RoughnessQuantity::ALL
+                            .iter()
+                            .map(|q| q.name())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ))
+            }
+            (false, Some(_)) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    "only the roughness axis takes a quantity (this axis is a cosine)".into(),
+                ))
+            }
+            (false, None) => Quantity::Cosine,
+        };
+        out_axes.push(Axis {
+            name: an.to_string(),
+            quantity,
+            size: raw.size,
+            range: raw.range.unwrap_or([0.0, 1.0]),
+            convention: raw.convention.unwrap_or(Convention::Centers),
+        });
+    }
+    let extra = axes.remaining();
+    if !extra.is_empty() {
+        return Err((
+            format!("axes.{}", extra[0]),
+            format!(
+                "is not an axis of a {} table (its axes: {})",
+                kind.name(),
+                kind.axis_names().join(", ")
+            ),
+        ));
+    }
+    Ok(TableSpec {
+        name,
+        kind,
+        model,
+        axes: out_axes,
+        dfg_layout: layout,
+        cloth: cloth.unwrap_or(false),
+        storage: storage.unwrap_or(Storage::F32),
+        tolerance: tolerance.unwrap_or(DEFAULT_TOLERANCE),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"{
+      "schema": "brdfbake.preset/1",
+      "tables": [{
+        "name": "dfg", "kind": "dfg", "layout": "karis",
+        "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+        "axes": {"cos_theta_v": {"size": 8}, "roughness": {"size": 8, "quantity": "perceptual"}}
+      }]
+    }"#;
+
+    #[test]
+    fn parses_a_good_preset() {
+        let p = parse(GOOD, "t", "t").unwrap();
+        assert_eq!(p.tables.len(), 1);
+        assert_eq!(
+            p.tables[0].spec.axes[1].quantity,
+            Quantity::Roughness(RoughnessQuantity::Perceptual)
+        );
+    }
+
+    fn err(text: &str) -> String {
+        parse(text, "t", "t").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let e = err(&GOOD.replace("\"ggx\"", "\"ggxx\""));
+        assert!(
+            e.contains("tables[0].model.ndf") && e.contains("beckmann"),
+            "{e}"
+        );
+        let e = err(&GOOD.replace("\"size\": 8}, \"roughness\"", "\"size\": 0}, \"roughness\""));
+        assert!(e.contains("axes.cos_theta_v.size"), "{e}");
+        let e = err(&GOOD.replace(", \"quantity\": \"perceptual\"", ""));
+        assert!(
+            e.contains("tables[0].axes.roughness.quantity") && e.contains("perceptual"),
+            "{e}"
+        );
+        let e = err(&GOOD.replace(
+            "\"layout\": \"karis\",",
+            "\"layout\": \"karis\", \"layout\": \"filament\",",
+        ));
+        assert!(e.contains("duplicate field"), "{e}");
+        let e = err(&GOOD.replace("\"kind\": \"dfg\",", "\"kind\": \"dfg\", \"colour\": 1,"));
+        assert!(e.contains("tables[0]") && e.contains("colour"), "{e}");
+        let e = err("{\"schema\": ");
+        assert!(e.contains("line 1"), "{e}");
+        let e = err(&GOOD.replace("\"masking\": \"smith-height-correlated\"", "\"masking\": \"smith-height-correlated\", \"fresnel\": {\"type\": \"schlick\", \"f0\": 0.04}"));
+        assert!(e.contains("fresnel must be none"), "{e}");
+    }
+}

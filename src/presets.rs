@@ -1,0 +1,33 @@
+//! The default presets, compiled in so the binary works outside the repository. The files
+//! in `presets/` are the source; a `presets/` directory in the working directory takes
+//! precedence at run time.
+
+/// (name, JSON text) of every built-in preset.
+pub const BUILTIN: &[(&str, &str)] = &[
+    (
+        "cook-torrance-1982",
+        include_str!("../presets/cook-torrance-1982.json"),
+    ),
+    (
+        "energy-albedo",
+        include_str!("../presets/energy-albedo.json"),
+    ),
+    ("filament-dfg", include_str!("../presets/filament-dfg.json")),
+    ("gaussian-ndf", include_str!("../presets/gaussian-ndf.json")),
+    (
+        "karis-envbrdf",
+        include_str!("../presets/karis-envbrdf.json"),
+    ),
+    ("smith-g", include_str!("../presets/smith-g.json")),
+];
+
+#[cfg(test)]
+mod tests {
+    /// Every built-in preset parses and validates.
+    #[test]
+    fn builtin_presets_are_valid() {
+        for (n, t) in super::BUILTIN {
+            crate::preset::parse(t, n, n).unwrap_or_else(|e| panic!("{n}: {e}"));
+        }
+    }
+}
