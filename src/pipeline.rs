@@ -37,12 +37,12 @@ pub fn table_dir(out: &Path, preset: &str) -> PathBuf {
     out.join(preset)
 }
 
+/// Files to write: (path, bytes).
+pub type Files = Vec<(PathBuf, Vec<u8>)>;
+
 /// Bakes and encodes every table of `preset` in memory. Returns the tables and the files
 /// to write.
-pub fn bake_preset(
-    preset: &Preset,
-    out: &Path,
-) -> Result<(Vec<BakedTable>, Vec<(PathBuf, Vec<u8>)>), PipelineError> {
+pub fn bake_preset(preset: &Preset, out: &Path) -> Result<(Vec<BakedTable>, Files), PipelineError> {
     let dir = table_dir(out, &preset.name);
     let mut baked = Vec::new();
     let mut files = Vec::new();

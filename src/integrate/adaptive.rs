@@ -102,16 +102,21 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(f: &mut F, a: f64, b: f64) -
     e
 }
 
+/// The limits that stay fixed during one recursion.
+struct Limits {
+    floor: f64,
+    budget: u64,
+}
+
 fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
     f: &mut F,
-    a: f64,
-    b: f64,
+    (a, b): (f64, f64),
     tol: f64,
-    floor: f64,
     depth: u32,
-    budget: u64,
+    lim: &Limits,
     out: &mut Estimate<N>,
 ) {
+    let (floor, budget) = (lim.floor, lim.budget);
     let e = panel(f, a, b);
     let err = e.max_error();
     if depth == 0 || err <= tol || err <= floor * (b - a) || !err.is_finite() || out.evals >= budget
@@ -125,8 +130,8 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
         return;
     }
     out.evals += e.evals;
-    recurse(f, a, m, 0.5 * tol, floor, depth - 1, budget, out);
-    recurse(f, m, b, 0.5 * tol, floor, depth - 1, budget, out);
+    recurse(f, (a, m), 0.5 * tol, depth - 1, lim, out);
+    recurse(f, (m, b), 0.5 * tol, depth - 1, lim, out);
 }
 
 /// Integrates `f` over `[a, b]` to the absolute tolerance `tol.abs` (estimated).
@@ -144,6 +149,10 @@ pub fn integrate<const N: usize, F: FnMut(f64) -> [f64; N]>(
         return out;
     }
     let n = tol.initial_panels.max(1);
+    let lim = Limits {
+        floor: tol.noise_floor,
+        budget: tol.max_evals,
+    };
     let w = (b - a) / n as f64;
     for i in 0..n {
         let lo = a + w * i as f64;
@@ -154,12 +163,10 @@ pub fn integrate<const N: usize, F: FnMut(f64) -> [f64; N]>(
         };
         recurse(
             &mut f,
-            lo,
-            hi,
+            (lo, hi),
             tol.abs / n as f64,
-            tol.noise_floor,
             tol.max_depth,
-            tol.max_evals,
+            &lim,
             &mut out,
         );
     }

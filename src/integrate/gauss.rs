@@ -1,7 +1,9 @@
 //! Fixed quadrature rules: Gauss–Kronrod G7/K15 and Gauss–Legendre of any order.
 //!
 //! The G7/K15 pair is the one QUADPACK's `qk15` uses (Piessens et al., *QUADPACK*, 1983);
-//! the node and weight values below are the published ones (Kronrod 1965, to 33 digits).
+//! the node and weight values below are the published ones (Kronrod 1965, to 33 digits),
+//! kept verbatim so they can be checked against the source (f64 rounds them on parsing).
+#![allow(clippy::excessive_precision)]
 
 /// Kronrod nodes on [-1, 1] (non-negative half; the rule is symmetric). Odd indices are
 /// the 7-point Gauss nodes.
