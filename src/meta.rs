@@ -2,6 +2,7 @@
 //! `docs/metadata.md`): everything an engine needs to sample the texture without guessing.
 
 use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::preset::PresetTable;
 use crate::table::{DfgLayout, Storage, TableKind, TableSpec};
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
@@ -11,9 +12,10 @@ pub const SCHEMA: &str = "brdfbake.lut/1";
 /// brdfbake's version, recorded in every output and in the input hash.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// The canonical description of a table's inputs: what is hashed. Two specs with equal
+/// The canonical description of a table's inputs: what is hashed. Two tables with equal
 /// inputs produce byte-identical outputs.
-pub fn inputs(spec: &TableSpec) -> Value {
+pub fn inputs(table: &PresetTable) -> Value {
+    let spec = &table.spec;
     let m = &spec.model;
     json!({
         "kind": spec.kind.name(),
@@ -34,17 +36,19 @@ pub fn inputs(spec: &TableSpec) -> Value {
         "cloth": spec.cloth,
         "storage": spec.storage,
         "tolerance": spec.tolerance,
+        "scale": table.scale,
+        "layout_3d": table.layout_3d,
     })
 }
 
 /// `sha256:<hex>` of the canonical inputs and brdfbake's version.
-pub fn input_hash(spec: &TableSpec) -> String {
+pub fn input_hash(table: &PresetTable) -> String {
     let mut h = Sha256::new();
     h.update(b"brdfbake ");
     h.update(VERSION.as_bytes());
     h.update(b"\n");
     h.update(
-        serde_json::to_string(&inputs(spec))
+        serde_json::to_string(&inputs(table))
             .expect("serializable")
             .as_bytes(),
     );
@@ -151,7 +155,8 @@ fn model_json(spec: &TableSpec) -> Value {
 }
 
 /// The full sidecar for a baked table. `files` maps format names to file names.
-pub fn metadata(preset: &str, spec: &TableSpec, lut: &Lut, files: &[(&str, String)]) -> Value {
+pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, String)]) -> Value {
+    let spec = &table.spec;
     let dims: Vec<usize> = lut.axes.iter().map(|a| a.size).collect();
     let (texel_type, rounding) = match spec.storage {
         Storage::F32 => (
@@ -191,7 +196,7 @@ pub fn metadata(preset: &str, spec: &TableSpec, lut: &Lut, files: &[(&str, Strin
     json!({
         "schema": SCHEMA,
         "generator": {"name": "brdfbake", "version": VERSION},
-        "input_hash": input_hash(spec),
+        "input_hash": input_hash(table),
         "preset": preset,
         "table": {
             "name": spec.name,
@@ -210,6 +215,13 @@ pub fn metadata(preset: &str, spec: &TableSpec, lut: &Lut, files: &[(&str, Strin
             "layout": layout,
             "row_order": "the first row in the file is y = 0 (the first coordinate of axis 1); upload it as the first row in memory, which every graphics API maps to texture coordinate v = 0: no y-flip",
             "sampling": "linear filtering, clamp-to-edge; coordinates per axis as in axes[k].shader_texture_coordinate",
+            "scale": table.scale,
+            "scale_meaning": "stored texel = value * scale; a shader divides what it samples by scale (1: stored as computed)",
+            "ktx2": {
+                "channels": "1 -> R, 2 -> RG, 3 -> RGBA with A = 1 (padding), 4 -> RGBA",
+                "layout_3d": table.layout_3d,
+                "orientation": "KTXorientation rd (2D) / rdi (3D, arrays): the first row is y = 0",
+            },
         },
         "quadrature": {
             "method": method,
@@ -222,15 +234,17 @@ pub fn metadata(preset: &str, spec: &TableSpec, lut: &Lut, files: &[(&str, Strin
 }
 
 /// A few key facts as string pairs for image-file headers.
-pub fn header_attributes(preset: &str, spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
+pub fn header_attributes(preset: &str, table: &PresetTable, lut: &Lut) -> Vec<(String, String)> {
+    let spec = &table.spec;
     let mut v = vec![
         ("schema".to_string(), SCHEMA.to_string()),
         ("version".to_string(), VERSION.to_string()),
-        ("input_hash".to_string(), input_hash(spec)),
+        ("input_hash".to_string(), input_hash(table)),
         ("preset".to_string(), preset.to_string()),
         ("table".to_string(), spec.name.clone()),
         ("kind".to_string(), spec.kind.name().to_string()),
         ("model".to_string(), model_summary(spec)),
+        ("scale".to_string(), format!("{}", table.scale)),
     ];
     for (k, a) in lut.axes.iter().enumerate() {
         v.push((

@@ -4,10 +4,15 @@
 //! files are replaced atomically, so a failure never leaves a partial or mixed set.
 
 use crate::encode::exr::ExrEncoder;
-use crate::encode::Encoder;
+use crate::encode::ktx2::Ktx2Encoder;
+use crate::encode::png::PngPreview;
+use crate::encode::shader::{ShaderLang, ShaderSnippet};
+use crate::encode::source::{CHeader, RustSource};
+use crate::encode::{EncodeError, Encoder};
 use crate::lut::Lut;
 use crate::meta;
-use crate::preset::{Format, Preset};
+use crate::preset::{Format, Layout3d, Preset, PresetTable};
+use crate::table::Storage;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -40,40 +45,92 @@ pub fn table_dir(out: &Path, preset: &str) -> PathBuf {
 /// Files to write: (path, bytes).
 pub type Files = Vec<(PathBuf, Vec<u8>)>;
 
-/// Bakes and encodes every table of `preset` in memory. Returns the tables and the files
-/// to write.
-pub fn bake_preset(preset: &Preset, out: &Path) -> Result<(Vec<BakedTable>, Files), PipelineError> {
+/// Encodes one table in one format: (file name suffix after `<table>.`, bytes) pairs.
+pub fn encode(
+    format: Format,
+    table: &PresetTable,
+    lut: &Lut,
+    attrs: &[(String, String)],
+) -> Result<Vec<(String, Vec<u8>)>, EncodeError> {
+    let name = table.spec.name.clone();
+    let half = table.spec.storage == Storage::F16;
+    let one = |enc: &dyn Encoder| -> Result<Vec<(String, Vec<u8>)>, EncodeError> {
+        Ok(vec![(enc.extension().to_string(), enc.encode(lut, attrs)?)])
+    };
+    match format {
+        Format::Exr => one(&ExrEncoder {
+            storage: table.spec.storage,
+            table_name: name,
+        }),
+        Format::Ktx2 => one(&Ktx2Encoder {
+            storage: table.spec.storage,
+            table_name: name,
+            array_3d: table.layout_3d == Layout3d::Array,
+        }),
+        Format::Png => PngPreview { table_name: name }.encode_all(lut),
+        Format::H => one(&CHeader {
+            table_name: name,
+            half,
+        }),
+        Format::Rs => one(&RustSource {
+            table_name: name,
+            half,
+        }),
+        Format::Glsl | Format::Hlsl | Format::Wgsl => one(&ShaderSnippet {
+            lang: match format {
+                Format::Glsl => ShaderLang::Glsl,
+                Format::Hlsl => ShaderLang::Hlsl,
+                _ => ShaderLang::Wgsl,
+            },
+            table_name: name,
+        }),
+    }
+}
+
+/// Bakes and encodes every table of `preset` in memory. `formats` overrides the preset's
+/// formats when given. Returns the tables and the files to write.
+pub fn bake_preset(
+    preset: &Preset,
+    out: &Path,
+    formats: Option<&[Format]>,
+) -> Result<(Vec<BakedTable>, Files), PipelineError> {
     let dir = table_dir(out, &preset.name);
     let mut baked = Vec::new();
     let mut files = Vec::new();
     for t in &preset.tables {
         let start = Instant::now();
-        let lut = crate::table::bake(&t.spec)
+        let mut lut = crate::table::bake(&t.spec)
             .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
         let elapsed = start.elapsed();
-        let attrs = meta::header_attributes(&preset.name, &t.spec, &lut);
+        if t.scale != 1.0 {
+            for v in lut.data.iter_mut() {
+                *v = (*v as f64 * t.scale) as f32;
+            }
+            if let Some(i) = lut.data.iter().position(|v| !v.is_finite()) {
+                return Err(PipelineError::Input(format!(
+                    "preset {}: table {}: scale {} makes texel {} overflow f32",
+                    preset.name,
+                    t.spec.name,
+                    t.scale,
+                    i / lut.channels.len()
+                )));
+            }
+        }
+        let attrs = meta::header_attributes(&preset.name, t, &lut);
         let mut names = Vec::new();
         let mut paths = Vec::new();
-        for f in &t.formats {
-            let (name, bytes) = match f {
-                Format::Exr => {
-                    let enc = ExrEncoder {
-                        storage: t.spec.storage,
-                        table_name: t.spec.name.clone(),
-                    };
-                    let bytes = enc.encode(&lut, &attrs).map_err(|e| {
-                        PipelineError::Input(format!("preset {}: {e}", preset.name))
-                    })?;
-                    ("exr", bytes)
-                }
-            };
-            let file = format!("{}.{}", t.spec.name, name);
-            let path = dir.join(&file);
-            names.push((name, file));
-            paths.push(path.clone());
-            files.push((path, bytes));
+        for f in formats.unwrap_or(&t.formats) {
+            let encoded = encode(*f, t, &lut, &attrs)
+                .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
+            for (suffix, bytes) in encoded {
+                let file = format!("{}.{}", t.spec.name, suffix);
+                let path = dir.join(&file);
+                names.push((suffix, file));
+                paths.push(path.clone());
+                files.push((path, bytes));
+            }
         }
-        let json = meta::metadata(&preset.name, &t.spec, &lut, &names);
+        let json = meta::metadata(&preset.name, t, &lut, &names);
         let mut text = serde_json::to_string_pretty(&json).expect("metadata serializes");
         text.push('\n');
         let jpath = dir.join(format!("{}.json", t.spec.name));
@@ -91,8 +148,12 @@ pub fn bake_preset(preset: &Preset, out: &Path) -> Result<(Vec<BakedTable>, File
 }
 
 /// Bakes a preset and writes its files atomically under `out`.
-pub fn bake_and_write(preset: &Preset, out: &Path) -> Result<Vec<BakedTable>, PipelineError> {
-    let (baked, files) = bake_preset(preset, out)?;
+pub fn bake_and_write(
+    preset: &Preset,
+    out: &Path,
+    formats: Option<&[Format]>,
+) -> Result<Vec<BakedTable>, PipelineError> {
+    let (baked, files) = bake_preset(preset, out, formats)?;
     let dir = table_dir(out, &preset.name);
     std::fs::create_dir_all(&dir).map_err(|e| {
         PipelineError::Environment(format!(

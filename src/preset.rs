@@ -17,10 +17,84 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-7;
 pub const MAX_PRESET_BYTES: u64 = 1 << 20;
 
 /// Output formats a table can be written in (the JSON sidecar is always written).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Deserialize, serde::Serialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Format {
+    /// OpenEXR, f32 or f16 per `storage`.
     Exr,
+    /// KTX 2.0, R/RG/RGBA 16- or 32-bit float per `storage` (3 channels padded to 4).
+    Ktx2,
+    /// 16-bit PNG previews for people (one greyscale image per channel and a false-colour
+    /// image with a legend), never a texture to sample.
+    Png,
+    /// C/C++ header with the texels as a `float` (or half-bit `uint16_t`) array.
+    H,
+    /// Rust source with the texels as a `static` array.
+    Rs,
+    /// GLSL lookup function with the exact coordinate transform.
+    Glsl,
+    /// HLSL lookup function.
+    Hlsl,
+    /// WGSL lookup function.
+    Wgsl,
+}
+
+impl Format {
+    pub const ALL: [Format; 8] = [
+        Format::Exr,
+        Format::Ktx2,
+        Format::Png,
+        Format::H,
+        Format::Rs,
+        Format::Glsl,
+        Format::Hlsl,
+        Format::Wgsl,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Exr => "exr",
+            Format::Ktx2 => "ktx2",
+            Format::Png => "png",
+            Format::H => "h",
+            Format::Rs => "rs",
+            Format::Glsl => "glsl",
+            Format::Hlsl => "hlsl",
+            Format::Wgsl => "wgsl",
+        }
+    }
+
+    /// Parses a comma-separated list such as `exr,ktx2,png` (for `--format`).
+    pub fn parse_list(s: &str) -> Result<Vec<Format>, String> {
+        let mut out = Vec::new();
+        for part in s.split(',').map(str::trim) {
+            let f = Format::ALL
+                .iter()
+                .find(|f| f.name() == part)
+                .ok_or_else(|| {
+                    format!(
+                        "unknown format {part:?} (accepted: {})",
+                        Format::ALL.map(|f| f.name()).join(", ")
+                    )
+                })?;
+            if !out.contains(f) {
+                out.push(*f);
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// How a 3D table is stored in a KTX2 file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Layout3d {
+    /// A 3D texture (trilinear filtering across slices in hardware).
+    Volume,
+    /// A 2D array texture, one layer per slice (the shader interpolates between layers).
+    Array,
 }
 
 /// A parsed, validated preset.
@@ -36,6 +110,10 @@ pub struct Preset {
 pub struct PresetTable {
     pub spec: TableSpec,
     pub formats: Vec<Format>,
+    /// Stored value = computed value × scale (so that e.g. large D values fit f16); the
+    /// metadata tells the shader to divide by it.
+    pub scale: f64,
+    pub layout_3d: Layout3d,
 }
 
 /// Why a preset was rejected.
@@ -83,6 +161,10 @@ struct RawTable {
     tolerance: Option<f64>,
     #[serde(default)]
     formats: Option<Vec<Format>>,
+    #[serde(default)]
+    scale: Option<f64>,
+    #[serde(default)]
+    layout_3d: Option<Layout3d>,
 }
 
 #[derive(Deserialize)]
@@ -245,10 +327,28 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         if formats.is_empty() {
             return Err(field(
                 at("formats"),
-                "list at least one format (accepted: \"exr\")".into(),
+                format!(
+                    "list at least one format (accepted: {})",
+                    Format::ALL.map(|f| f.name()).join(", ")
+                ),
             ));
         }
-        tables.push(PresetTable { spec, formats });
+        let scale = t.scale.unwrap_or(1.0);
+        if !(scale.is_finite() && scale > 0.0 && scale <= 1e30) {
+            return Err(field(
+                at("scale"),
+                format!("must be a number in (0, 1e30], got {scale}"),
+            ));
+        }
+        if t.layout_3d.is_some() && spec.axes.len() != 3 {
+            return Err(field(at("layout_3d"), "applies to 3D tables only".into()));
+        }
+        tables.push(PresetTable {
+            spec,
+            formats,
+            scale,
+            layout_3d: t.layout_3d.unwrap_or(Layout3d::Volume),
+        });
     }
     Ok(Preset {
         name: name.into(),

@@ -15,12 +15,23 @@ pub struct BakeArgs {
     /// Worker threads (default: all cores). Outputs are identical for any count.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
+    /// Output formats for every table, overriding the presets' (comma-separated:
+    /// exr, ktx2, png, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
+    #[arg(long, value_name = "LIST")]
+    pub format: Option<String>,
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
 }
 
 pub fn run(a: BakeArgs) -> Result<(), CliError> {
+    let formats = match &a.format {
+        Some(s) => Some(
+            crate::preset::Format::parse_list(s)
+                .map_err(|e| CliError::input(format!("--format: {e}")))?,
+        ),
+        None => None,
+    };
     let presets = resolve(&a.presets)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.map_or(0, usize::from))
@@ -28,7 +39,7 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
     for p in &presets {
         let baked = pool
-            .install(|| bake_and_write(p, &a.out))
+            .install(|| bake_and_write(p, &a.out, formats.as_deref()))
             .map_err(|e| match e {
                 PipelineError::Input(m) => CliError::input(m),
                 PipelineError::Environment(m) => CliError::env(m),
