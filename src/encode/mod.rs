@@ -3,6 +3,7 @@
 //! input always gives the same bytes, and an encoding error leaves no half-written output.
 
 pub mod exr;
+pub mod ktx2;
 
 pub use self::exr::{decode_exr, DecodedExr, ExrEncoder};
 
