@@ -220,7 +220,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "ktx2": {
                 "channels": "1 -> R, 2 -> RG, 3 -> RGBA with A = 1 (padding), 4 -> RGBA",
                 "layout_3d": table.layout_3d,
-                "orientation": "KTXorientation rd (2D) / rdi (3D, arrays): the first row is y = 0",
+                "orientation": "KTXorientation rd (1D, 2D and 2D arrays) / rdi (3D textures): the first row is y = 0",
             },
         },
         "quadrature": {

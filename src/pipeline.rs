@@ -147,6 +147,23 @@ pub fn bake_preset(
     Ok((baked, files))
 }
 
+/// Writes a set of encoded files atomically: every file is written to a temporary file
+/// first, and only when all are written are they renamed into place.
+pub fn write_files(files: &Files) -> Result<(), PipelineError> {
+    let mut dirs: Vec<&Path> = files.iter().filter_map(|(p, _)| p.parent()).collect();
+    dirs.sort();
+    dirs.dedup();
+    for dir in dirs {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            PipelineError::Environment(format!(
+                "cannot create output directory {}: {e}",
+                dir.display()
+            ))
+        })?;
+    }
+    crate::write::write_all_atomic(files).map_err(|e| PipelineError::Environment(e.to_string()))
+}
+
 /// Bakes a preset and writes its files atomically under `out`.
 pub fn bake_and_write(
     preset: &Preset,
@@ -154,14 +171,6 @@ pub fn bake_and_write(
     formats: Option<&[Format]>,
 ) -> Result<Vec<BakedTable>, PipelineError> {
     let (baked, files) = bake_preset(preset, out, formats)?;
-    let dir = table_dir(out, &preset.name);
-    std::fs::create_dir_all(&dir).map_err(|e| {
-        PipelineError::Environment(format!(
-            "cannot create output directory {}: {e}",
-            dir.display()
-        ))
-    })?;
-    crate::write::write_all_atomic(&files)
-        .map_err(|e| PipelineError::Environment(e.to_string()))?;
+    write_files(&files)?;
     Ok(baked)
 }

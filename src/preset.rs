@@ -244,6 +244,19 @@ struct RawAxis {
 /// Parses a preset from JSON text. `source_name` is used in messages (a path or a name),
 /// `name` is the preset's name (its file stem).
 pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, PresetError> {
+    // serde's derived structs also accept JSON arrays in place of objects; a preset is
+    // objects all the way down, so check the shape first (this also reports syntax errors).
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| PresetError::Syntax {
+        source_name: source_name.into(),
+        line: e.line(),
+        column: e.column(),
+        msg: strip_position(&e.to_string()),
+    })?;
+    check_objects(&value).map_err(|(path, msg)| PresetError::Field {
+        source_name: source_name.into(),
+        path,
+        msg,
+    })?;
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: RawPreset = serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -384,8 +397,15 @@ pub fn load(path: &Path) -> Result<Preset, LoadError> {
     let name = path
         .file_stem()
         .and_then(|s| s.to_str())
-        .unwrap_or("preset")
+        .unwrap_or("")
         .to_string();
+    if !valid_name(&name) {
+        return Err(LoadError::Input(format!(
+            "{}: the file stem {name:?} is the preset's name and output folder; use 1-64 characters \
+             from a-z, A-Z, 0-9, '-', '_', not starting with '-'",
+            path.display()
+        )));
+    }
     parse(&text, &path.display().to_string(), &name).map_err(|e| LoadError::Input(e.to_string()))
 }
 
@@ -396,6 +416,51 @@ pub enum LoadError {
     Input(String),
     #[error("cannot read {0}: {1}")]
     Io(String, #[source] std::io::Error),
+}
+
+/// Every place of the schema that holds an object must hold one (not an array).
+fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
+    use serde_json::Value;
+    let need = |v: &Value, path: &str| -> Result<(), (String, String)> {
+        match v {
+            Value::Object(_) => Ok(()),
+            other => Err((
+                path.to_string(),
+                format!("must be a JSON object {{...}}, got {}", kind_of(other)),
+            )),
+        }
+    };
+    need(v, "(top level)")?;
+    if let Some(Value::Array(tables)) = v.get("tables") {
+        for (i, t) in tables.iter().enumerate() {
+            need(t, &format!("tables[{i}]"))?;
+            for key in ["model", "axes"] {
+                if let Some(x) = t.get(key) {
+                    need(x, &format!("tables[{i}].{key}"))?;
+                }
+            }
+            if let Some(Value::Object(axes)) = t.get("axes") {
+                for (k, a) in axes {
+                    need(a, &format!("tables[{i}].axes.{k}"))?;
+                }
+            }
+            if let Some(f) = t.get("model").and_then(|m| m.get("fresnel")) {
+                need(f, &format!("tables[{i}].model.fresnel"))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn kind_of(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
+    }
 }
 
 fn valid_name(s: &str) -> bool {

@@ -46,6 +46,25 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> 
         }
     }
 
+    // A rename cannot replace a directory (or, portably, anything but a file): find that
+    // before the first rename, so such a target fails the whole set with nothing replaced.
+    for (path, _) in files {
+        if let Ok(m) = fs::symlink_metadata(path) {
+            if !m.file_type().is_file() {
+                return Err(WriteError::Prepare {
+                    path: path.clone(),
+                    source: io::Error::new(
+                        io::ErrorKind::AlreadyExists,
+                        format!(
+                            "cannot replace {}: it exists and is not a regular file (a directory or a link?)",
+                            path.display()
+                        ),
+                    ),
+                });
+            }
+        }
+    }
+
     let mut temps: Vec<PathBuf> = Vec::with_capacity(files.len());
     for (path, bytes) in files {
         match prepare(path, bytes) {

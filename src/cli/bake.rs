@@ -1,7 +1,7 @@
 //! `brdfbake bake`: presets → textures.
 
 use super::CliError;
-use crate::pipeline::{bake_and_write, PipelineError};
+use crate::pipeline::{bake_preset, write_files, PipelineError};
 use crate::preset::{self, LoadError, Preset};
 use std::path::{Path, PathBuf};
 
@@ -37,37 +37,38 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         .num_threads(a.threads.map_or(0, usize::from))
         .build()
         .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
+    // Bake everything in memory first, then write all presets' files in one atomic set:
+    // a failure anywhere leaves every previous output as it was.
+    let to_err = |e: PipelineError| match e {
+        PipelineError::Input(m) => CliError::input(m),
+        PipelineError::Environment(m) => CliError::env(m),
+    };
+    let mut all_baked = Vec::new();
+    let mut all_files = Vec::new();
     for p in &presets {
-        let baked = pool
-            .install(|| bake_and_write(p, &a.out, formats.as_deref()))
-            .map_err(|e| match e {
-                PipelineError::Input(m) => CliError::input(m),
-                PipelineError::Environment(m) => CliError::env(m),
-            })?;
-        if !a.quiet {
-            for b in baked {
-                let dims: Vec<String> = b.lut.axes.iter().map(|x| x.size.to_string()).collect();
-                let err = b.lut.error_estimate.iter().cloned().fold(0.0, f64::max);
-                println!(
-                    "{}/{}: {} {} in {:.2} s, est. max error {:.1e} -> {}",
-                    b.preset,
-                    b.table,
-                    dims.join("x"),
-                    b.lut
-                        .channels
-                        .iter()
-                        .map(|c| c.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(","),
-                    b.elapsed.as_secs_f64(),
-                    err,
-                    b.files
-                        .iter()
-                        .map(|f| f.display().to_string())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                );
-            }
+        let (baked, files) = pool
+            .install(|| bake_preset(p, &a.out, formats.as_deref()))
+            .map_err(to_err)?;
+        all_baked.extend(baked);
+        all_files.extend(files);
+    }
+    write_files(&all_files).map_err(to_err)?;
+    if !a.quiet {
+        for b in all_baked {
+            let dims: Vec<String> = b.lut.axes.iter().map(|x| x.size.to_string()).collect();
+            let err = b.lut.error_estimate.iter().cloned().fold(0.0, f64::max);
+            let channels: Vec<&str> = b.lut.channels.iter().map(|c| c.name.as_str()).collect();
+            let files: Vec<String> = b.files.iter().map(|f| f.display().to_string()).collect();
+            println!(
+                "{}/{}: {} {} in {:.2} s, est. max error {:.1e} -> {}",
+                b.preset,
+                b.table,
+                dims.join("x"),
+                channels.join(","),
+                b.elapsed.as_secs_f64(),
+                err,
+                files.join(", ")
+            );
         }
     }
     Ok(())

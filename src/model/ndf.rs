@@ -90,6 +90,12 @@ pub struct Ndf {
     numeric_g1: OnceLock<Arc<ChebFn>>,
 }
 
+/// Smallest α accepted: below the 1.5e-8 that the first centred texel of a 4096-texel
+/// perceptual axis gives, and far above where f64 D = 1/(πα²) would overflow.
+pub const MIN_ALPHA: f64 = 1e-9;
+/// Largest α accepted (beyond, every NDF is flat to f64 precision for all practical use).
+pub const MAX_ALPHA: f64 = 100.0;
+
 /// Tolerance to which numeric constants (normalizations, Λ) are computed: far below the
 /// 1e-6 table target so that they never dominate the error budget.
 const NUMERIC_TOL: f64 = 1e-12;

@@ -224,7 +224,7 @@ impl TableSpec {
                         let a = q.to_alpha(x);
                         if !(a.is_finite() && a > 0.0) {
                             return Err(format!(
-                                "{f}: texel {i} has {} = {x}, which gives alpha = {a}; every texel needs alpha > 0 \
+                                "{f}: texel {i} is at {} {x:e} (alpha {a:e}); every texel needs alpha > 0 \
                                  (use the centers convention or a range starting above 0)",
                                 q.name()
                             ));
