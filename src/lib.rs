@@ -37,6 +37,7 @@ pub mod model;
 pub mod pipeline;
 pub mod preset;
 pub mod presets;
+pub mod readback;
 pub mod table;
 pub mod write;
 

@@ -2,8 +2,9 @@
 
 use super::CliError;
 use crate::pipeline::{bake_preset, write_files, PipelineError};
-use crate::preset::{self, LoadError, Preset};
+use crate::preset::{self, Format, LoadError, Preset};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct BakeArgs {
@@ -22,6 +23,141 @@ pub struct BakeArgs {
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Write nothing; exit 1 and list the outputs that are missing or stale (their sidecar's
+    /// input hash differs from the preset's, e.g. after a preset edit or a brdfbake upgrade),
+    /// exit 0 if all are up to date.
+    #[arg(long)]
+    pub check: bool,
+    /// Print one JSON document (what was baked or checked) on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One output that `--check` found missing or stale.
+struct Stale {
+    preset: String,
+    table: String,
+    file: PathBuf,
+    reason: String,
+}
+
+/// The sidecar `files` keys a table's formats produce.
+fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<String> {
+    let mut keys = Vec::new();
+    for f in formats {
+        if *f == Format::Png {
+            let ch = crate::table::channels(&t.spec);
+            for c in &ch {
+                keys.push(format!("preview-{}.png", c.name));
+            }
+            keys.push(format!("preview-{}-colour.png", ch[0].name));
+        } else {
+            keys.push(f.name().to_string());
+        }
+    }
+    keys
+}
+
+fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result<(), CliError> {
+    let mut stale = Vec::new();
+    let mut checked = 0usize;
+    for p in presets {
+        let dir = crate::pipeline::table_dir(&a.out, &p.name);
+        for t in &p.tables {
+            checked += 1;
+            let mut bad = |file: PathBuf, reason: String| {
+                stale.push(Stale {
+                    preset: p.name.clone(),
+                    table: t.spec.name.clone(),
+                    file,
+                    reason,
+                })
+            };
+            let jpath = dir.join(format!("{}.json", t.spec.name));
+            let sidecar: serde_json::Value = match std::fs::read(&jpath) {
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    bad(jpath, "missing".into());
+                    continue;
+                }
+                Err(e) => {
+                    return Err(CliError::env(format!(
+                        "cannot read {}: {e}",
+                        jpath.display()
+                    )))
+                }
+                Ok(b) => match serde_json::from_slice(&b) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        bad(jpath, format!("not valid JSON ({e})"));
+                        continue;
+                    }
+                },
+            };
+            let want = crate::meta::input_hash(t);
+            let have = sidecar
+                .get("input_hash")
+                .and_then(|h| h.as_str())
+                .unwrap_or("(none)");
+            if have != want {
+                bad(
+                    jpath.clone(),
+                    format!("stale: input hash {have} differs from the preset's {want} (preset changed or brdfbake version differs)"),
+                );
+            }
+            let files = sidecar.get("files");
+            for key in expected_keys(t, formats.unwrap_or(&t.formats)) {
+                let name = format!("{}.{key}", t.spec.name);
+                let path = dir.join(&name);
+                if !path.is_file() {
+                    bad(path, "missing".into());
+                } else if files.and_then(|f| f.get(&key)).is_none() {
+                    bad(
+                        path,
+                        "not listed in its sidecar (written by another bake)".into(),
+                    );
+                }
+            }
+        }
+    }
+    if a.json {
+        let doc = serde_json::json!({
+            "up_to_date": stale.is_empty(),
+            "tables_checked": checked,
+            "stale": stale.iter().map(|s| serde_json::json!({
+                "preset": s.preset, "table": s.table,
+                "file": s.file.display().to_string(), "reason": s.reason,
+            })).collect::<Vec<_>>(),
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+    } else if !a.quiet {
+        for s in &stale {
+            println!(
+                "{}/{}: {}: {}",
+                s.preset,
+                s.table,
+                s.file.display(),
+                s.reason
+            );
+        }
+        if stale.is_empty() {
+            println!("{checked} table(s) up to date in {}", a.out.display());
+        }
+    }
+    if stale.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError {
+            code: super::EXIT_FAILURE,
+            msg: format!(
+                "{} output(s) missing or stale in {}; run brdfbake bake to update",
+                stale.len(),
+                a.out.display()
+            ),
+        })
+    }
 }
 
 pub fn run(a: BakeArgs) -> Result<(), CliError> {
@@ -33,6 +169,10 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = resolve(&a.presets)?;
+    if a.check {
+        return check(&a, &presets, formats.as_deref());
+    }
+    let started = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.map_or(0, usize::from))
         .build()
@@ -53,6 +193,42 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         all_files.extend(files);
     }
     write_files(&all_files).map_err(to_err)?;
+    if a.json {
+        let tables: Vec<serde_json::Value> = all_baked
+            .iter()
+            .map(|b| {
+                let err: serde_json::Map<String, serde_json::Value> = b
+                    .lut
+                    .channels
+                    .iter()
+                    .zip(&b.lut.error_estimate)
+                    .map(|(c, e)| (c.name.clone(), serde_json::json!(e)))
+                    .collect();
+                serde_json::json!({
+                    "preset": b.preset,
+                    "table": b.table,
+                    "size": b.lut.axes.iter().map(|x| x.size).collect::<Vec<_>>(),
+                    "axes": b.lut.axes.iter().map(|x| x.name.clone()).collect::<Vec<_>>(),
+                    "channels": b.lut.channels.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
+                    "seconds": b.elapsed.as_secs_f64(),
+                    "evaluations": b.lut.evaluations,
+                    "estimated_max_error": err,
+                    "files": b.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
+        let doc = serde_json::json!({
+            "generator": {"name": "brdfbake", "version": crate::meta::VERSION},
+            "out": a.out.display().to_string(),
+            "seconds": started.elapsed().as_secs_f64(),
+            "tables": tables,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+        return Ok(());
+    }
     if !a.quiet {
         for b in all_baked {
             let dims: Vec<String> = b.lut.axes.iter().map(|x| x.size.to_string()).collect();

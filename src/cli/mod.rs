@@ -2,7 +2,11 @@
 //! environment (I/O), 2 bad input (arguments, presets).
 
 mod bake;
+mod eval;
+mod inspect;
 mod list;
+mod probe;
+mod verify;
 
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;
@@ -19,7 +23,7 @@ pub const EXIT_INPUT: i32 = 2;
     name = "brdfbake",
     version,
     about = "Bake exact, documented BRDF lookup textures (DFG, albedo, NDF, G) for real-time renderers",
-    after_help = "Exit codes: 0 success, 1 I/O or environment failure, 2 bad input."
+    after_help = "Exit codes: 0 success, 1 failure (I/O, environment, check or verify failed), 2 bad input."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -32,6 +36,14 @@ pub enum Command {
     Bake(bake::BakeArgs),
     /// List the available presets and table kinds.
     List(list::ListArgs),
+    /// Show what a texture brdfbake wrote holds: kind, model, axes, channels, statistics.
+    Inspect(inspect::InspectArgs),
+    /// Sample a texture as a GPU would (linear, clamp-to-edge) next to the exact value.
+    Probe(probe::ProbeArgs),
+    /// Compute a quantity directly (D, G1, G2, E, E_avg, split sum, sheen), without a table.
+    Eval(eval::EvalArgs),
+    /// Recompute a spread of texels at high accuracy; exit 1 over the tolerance.
+    Verify(verify::VerifyArgs),
 }
 
 /// An error with its exit code.
@@ -69,6 +81,10 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     let r = match cli.command {
         Command::Bake(a) => bake::run(a),
         Command::List(a) => list::run(a),
+        Command::Inspect(a) => inspect::run(a),
+        Command::Probe(a) => probe::run(a),
+        Command::Eval(a) => eval::run(a),
+        Command::Verify(a) => verify::run(a),
     };
     match r {
         Ok(()) => EXIT_OK,

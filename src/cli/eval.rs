@@ -1,0 +1,265 @@
+//! `brdfbake eval QUANTITY ...`: one quantity computed directly, without a table.
+
+use super::CliError;
+use crate::lut::{Axis, Convention, Quantity};
+use crate::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
+use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+use serde_json::json;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EvalQuantity {
+    /// The NDF D(cos theta_h) (modern normalization); needs --cos-theta (= n.h).
+    D,
+    /// Smith G1(cos theta); needs --cos-theta.
+    G1,
+    /// G2(cos theta_v, cos theta_l) of --masking; needs --cos-theta and --cos-theta-l.
+    G2,
+    /// Directional albedo E(mu) of the BRDF (with --f0 Schlick Fresnel, default F = 1); needs --cos-theta.
+    E,
+    /// Average albedo E_avg = 2 int E(mu) mu dmu.
+    EAvg,
+    /// Split sum: A = int (1-Fc) f cos, B = int Fc f cos (and Filament's R = B, G = A + B); needs --cos-theta.
+    Dfg,
+    /// Sheen albedo int D_Charlie V_Ashikhmin cos (Filament's cloth DFG channel); needs --cos-theta.
+    Sheen,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct EvalArgs {
+    /// What to compute.
+    #[arg(value_enum)]
+    pub quantity: EvalQuantity,
+    /// NDF: beckmann, ggx, gaussian, blinn-phong, charlie.
+    #[arg(long, default_value = "ggx")]
+    pub ndf: String,
+    /// The NDF's alpha.
+    #[arg(long, conflicts_with = "roughness")]
+    pub alpha: Option<f64>,
+    /// Perceptual roughness r (alpha = r^2).
+    #[arg(long)]
+    pub roughness: Option<f64>,
+    /// cos theta (n.h for D, n.v for G1, G2, E, dfg, sheen).
+    #[arg(long)]
+    pub cos_theta: Option<f64>,
+    /// cos theta_l (G2 only).
+    #[arg(long)]
+    pub cos_theta_l: Option<f64>,
+    /// Masking: none, v-groove, smith-separable, smith-height-correlated, ashikhmin.
+    #[arg(long, default_value = "smith-height-correlated")]
+    pub masking: String,
+    /// Schlick Fresnel F0 for E and E_avg (default: F = 1).
+    #[arg(long)]
+    pub f0: Option<f64>,
+    /// Quadrature tolerance (estimated absolute error).
+    #[arg(long, default_value_t = 1e-10)]
+    pub tolerance: f64,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn parse_named<T: serde::de::DeserializeOwned>(
+    flag: &str,
+    s: &str,
+    accepted: &str,
+) -> Result<T, CliError> {
+    serde_json::from_value(json!(s)).map_err(|_| {
+        CliError::input(format!(
+            "{flag}: unknown value {s:?} (accepted: {accepted})"
+        ))
+    })
+}
+
+fn cos_axis(name: &str, x: f64) -> Axis {
+    Axis {
+        name: name.into(),
+        quantity: Quantity::Cosine,
+        size: 1,
+        range: [x, x],
+        convention: Convention::Centers,
+    }
+}
+
+pub fn run(a: EvalArgs) -> Result<(), CliError> {
+    let ndf: NdfKind = parse_named("--ndf", &a.ndf, &NdfKind::ALL.map(|n| n.name()).join(", "))?;
+    let masking: Masking = parse_named(
+        "--masking",
+        &a.masking,
+        &Masking::ALL.map(|n| n.name()).join(", "),
+    )?;
+    let (q, r) = match (a.alpha, a.roughness) {
+        (Some(x), _) => (RoughnessQuantity::Alpha, x),
+        (None, Some(x)) => (RoughnessQuantity::Perceptual, x),
+        (None, None) => {
+            return Err(CliError::input(
+                "give the roughness: --alpha A (the NDF's alpha) or --roughness R (perceptual, alpha = R^2)",
+            ))
+        }
+    };
+    if !r.is_finite() {
+        return Err(CliError::input(
+            "--alpha/--roughness must be a finite number",
+        ));
+    }
+    let need = |v: Option<f64>, flag: &str| -> Result<f64, CliError> {
+        v.filter(|x| x.is_finite()).ok_or_else(|| {
+            CliError::input(format!(
+                "{} needs {flag} (a cosine in [0, 1])",
+                format!("{:?}", a.quantity).to_lowercase()
+            ))
+        })
+    };
+    let rough = Axis {
+        name: "roughness".into(),
+        quantity: Quantity::Roughness(q),
+        size: 1,
+        range: [r, r],
+        convention: Convention::Centers,
+    };
+    let fresnel = match a.f0 {
+        Some(f0) => Fresnel::Schlick { f0 },
+        None => Fresnel::None,
+    };
+    let (kind, axes, masking, layout, cloth, fresnel) = match a.quantity {
+        EvalQuantity::D => (
+            TableKind::Ndf,
+            vec![
+                cos_axis("cos_theta_h", need(a.cos_theta, "--cos-theta")?),
+                rough,
+            ],
+            Masking::None,
+            None,
+            false,
+            Fresnel::None,
+        ),
+        EvalQuantity::G1 => (
+            TableKind::G1,
+            vec![
+                cos_axis("cos_theta", need(a.cos_theta, "--cos-theta")?),
+                rough,
+            ],
+            Masking::SmithSeparable,
+            None,
+            false,
+            Fresnel::None,
+        ),
+        EvalQuantity::G2 => (
+            TableKind::G2,
+            vec![
+                cos_axis("cos_theta_v", need(a.cos_theta, "--cos-theta")?),
+                cos_axis("cos_theta_l", need(a.cos_theta_l, "--cos-theta-l")?),
+                rough,
+            ],
+            masking,
+            None,
+            false,
+            Fresnel::None,
+        ),
+        EvalQuantity::E => (
+            TableKind::Albedo,
+            vec![
+                cos_axis("cos_theta_v", need(a.cos_theta, "--cos-theta")?),
+                rough,
+            ],
+            masking,
+            None,
+            false,
+            fresnel,
+        ),
+        EvalQuantity::EAvg => (
+            TableKind::AlbedoAvg,
+            vec![rough],
+            masking,
+            None,
+            false,
+            fresnel,
+        ),
+        EvalQuantity::Dfg => (
+            TableKind::Dfg,
+            vec![
+                cos_axis("cos_theta_v", need(a.cos_theta, "--cos-theta")?),
+                rough,
+            ],
+            masking,
+            Some(DfgLayout::Karis),
+            false,
+            Fresnel::None,
+        ),
+        EvalQuantity::Sheen => (
+            TableKind::Dfg,
+            vec![
+                cos_axis("cos_theta_v", need(a.cos_theta, "--cos-theta")?),
+                rough,
+            ],
+            masking,
+            Some(DfgLayout::Filament),
+            true,
+            Fresnel::None,
+        ),
+    };
+    let spec = TableSpec {
+        name: "eval".into(),
+        kind,
+        model: ModelSpec {
+            ndf: Some(ndf),
+            masking,
+            fresnel,
+            diffuse_weight: 0.0,
+        },
+        axes,
+        dfg_layout: layout,
+        cloth,
+        storage: Storage::F32,
+        tolerance: a.tolerance,
+    };
+    let x: Vec<f64> = spec.axes.iter().map(|ax| ax.range[0]).collect();
+    let (mut v, mut e) =
+        crate::readback::exact_at(&spec, &x, a.tolerance).map_err(CliError::input)?;
+    let mut names: Vec<String> = crate::table::channels(&spec)
+        .into_iter()
+        .map(|c| c.name)
+        .collect();
+    match a.quantity {
+        EvalQuantity::Sheen => {
+            v = vec![v[2]];
+            e = vec![e[2]];
+            names = vec!["sheen".into()];
+        }
+        EvalQuantity::Dfg => {
+            // also Filament's layout: R = B, G = A + B
+            v.extend([v[1], v[0] + v[1]]);
+            e.extend([e[1], e[0] + e[1]]);
+            names.extend(["R".to_string(), "G (= A + B)".to_string()]);
+        }
+        _ => {}
+    }
+    let alpha = q.to_alpha(r);
+    let model = if a.quantity == EvalQuantity::Sheen {
+        "charlie / ashikhmin (sheen)".to_string()
+    } else {
+        crate::meta::model_summary(&spec)
+    };
+    if a.json {
+        let doc = json!({
+            "quantity": format!("{:?}", a.quantity).to_lowercase(),
+            "model": model,
+            "alpha": alpha,
+            "values": names.iter().zip(&v).map(|(n, x)| (n.clone(), json!(x))).collect::<serde_json::Map<_, _>>(),
+            "error_estimates": names.iter().zip(&e).map(|(n, x)| (n.clone(), json!(x))).collect::<serde_json::Map<_, _>>(),
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+        return Ok(());
+    }
+    println!("{model} at alpha = {alpha}");
+    for ((n, x), err) in names.iter().zip(&v).zip(&e) {
+        if *err > 0.0 {
+            println!("{n} = {x:.15}  (estimated error {err:.1e})");
+        } else {
+            println!("{n} = {x:.15}");
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,194 @@
+//! `brdfbake inspect FILE`: what a texture (and its sidecar) holds.
+
+use super::CliError;
+use crate::readback::{self, ReadError, Readback};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Debug)]
+pub struct InspectArgs {
+    /// A .exr or .ktx2 texture brdfbake wrote (its .json sidecar is read from next to it),
+    /// or the .json sidecar itself.
+    pub file: PathBuf,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Reads a file back, mapping errors to exit codes (2: not ours / bad path, 1: unreadable).
+pub(super) fn read(path: &Path) -> Result<Readback, CliError> {
+    readback::read(path).map_err(|e| match e {
+        ReadError::Input(m) => CliError::input(m),
+        ReadError::Io(m) => CliError::env(m),
+    })
+}
+
+fn axis_line(a: &crate::lut::Axis) -> String {
+    let q = match a.quantity {
+        crate::lut::Quantity::Cosine => "cosine".to_string(),
+        crate::lut::Quantity::Roughness(q) => format!("roughness ({}: {})", q.name(), q.mapping()),
+    };
+    format!(
+        "{} — {q}, {} texels over [{}, {}], {}",
+        a.name,
+        a.size,
+        a.range[0],
+        a.range[1],
+        a.convention.name()
+    )
+}
+
+pub fn run(a: InspectArgs) -> Result<(), CliError> {
+    let rb = read(&a.file)?;
+    let sc = rb.sidecar.as_ref();
+    let s = |path: &[&str]| -> Option<Value> {
+        let mut x = sc?;
+        for p in path {
+            x = x.get(*p)?;
+        }
+        Some(x.clone())
+    };
+    let stats = rb.lut.as_ref().map(readback::stats);
+    let notes = notes(&rb);
+    if a.json {
+        let doc = json!({
+            "texture": rb.texture.as_ref().map(|p| p.display().to_string()),
+            "texture_format": rb.texture_format,
+            "sidecar": rb.sidecar_path.as_ref().map(|p| p.display().to_string()),
+            "preset": rb.preset,
+            "table": s(&["table"]),
+            "model": rb.table.as_ref().map(|t| crate::meta::model_summary(&t.spec)),
+            "axes": rb.lut.as_ref().map(|l| l.axes.iter().map(|x| json!({
+                "name": x.name, "size": x.size, "range": x.range, "convention": x.convention.name(),
+            })).collect::<Vec<_>>()),
+            "channels": s(&["channels"]),
+            "reconstruction": s(&["reconstruction"]),
+            "storage": s(&["storage", "texel_type"]),
+            "scale": rb.scale,
+            "estimated_max_error": s(&["quadrature", "estimated_max_error"]),
+            "input_hash": s(&["input_hash"]),
+            "input_hash_consistent": rb.hash_matches,
+            "file_attributes": rb.file_facts.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+            "stats": stats,
+            "notes": notes,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+        return Ok(());
+    }
+    if let Some(t) = &rb.texture {
+        println!(
+            "texture:   {} ({})",
+            t.display(),
+            rb.texture_format.unwrap_or("")
+        );
+    }
+    match &rb.sidecar_path {
+        Some(p) => println!("sidecar:   {}", p.display()),
+        None => println!("sidecar:   none found (showing what the texture itself tells)"),
+    }
+    if let Some(p) = &rb.preset {
+        println!("preset:    {p}");
+    }
+    if let Some(t) = &rb.table {
+        println!(
+            "table:     {} ({}: {})",
+            t.spec.name,
+            t.spec.kind.name(),
+            t.spec.kind.description()
+        );
+        println!("model:     {}", crate::meta::model_summary(&t.spec));
+        println!("storage:   {:?}, scale {}", t.spec.storage, t.scale);
+    }
+    if rb.table.is_none() {
+        for (k, v) in &rb.file_facts {
+            println!("{k:<10} {v}");
+        }
+    }
+    if let Some(l) = &rb.lut {
+        println!("axes (u, v, w):");
+        for x in &l.axes {
+            println!("  {}", axis_line(x));
+        }
+    }
+    if let Some(Value::Array(ch)) = s(&["channels"]) {
+        println!("channels:");
+        for c in ch {
+            println!(
+                "  {} — {}",
+                c["name"].as_str().unwrap_or(""),
+                c["meaning"].as_str().unwrap_or("")
+            );
+        }
+    }
+    if let Some(Value::String(r)) = s(&["reconstruction"]) {
+        println!("shader:    {r}");
+    }
+    if let Some(Value::Object(e)) = s(&["quadrature", "estimated_max_error"]) {
+        let parts: Vec<String> = e.iter().map(|(k, v)| format!("{k} {v}")).collect();
+        println!(
+            "estimated bake error (max abs per channel): {}",
+            parts.join(", ")
+        );
+    }
+    if let Some(st) = &stats {
+        println!("texels (stored values):");
+        println!(
+            "  {:<12} {:>14} {:>14} {:>14} {:>5} {:>5}",
+            "channel", "min", "max", "mean", "NaN", "Inf"
+        );
+        for c in st {
+            println!(
+                "  {:<12} {:>14.8} {:>14.8} {:>14.8} {:>5} {:>5}",
+                c.name, c.min, c.max, c.mean, c.nan, c.inf
+            );
+        }
+    }
+    for n in &notes {
+        println!("note: {n}");
+    }
+    Ok(())
+}
+
+fn notes(rb: &Readback) -> Vec<String> {
+    let mut v = Vec::new();
+    if rb.sidecar.is_none() {
+        v.push("no JSON sidecar next to the texture: axes, channel meanings and the bake error are unknown beyond the file's own header".into());
+    }
+    if rb.texture.is_none() {
+        v.push("no texture found for this sidecar (looked for its files.exr / files.ktx2)".into());
+    }
+    if rb.hash_matches == Some(false) {
+        let same_version = rb
+            .sidecar
+            .as_ref()
+            .and_then(|s| s.pointer("/generator/version"))
+            .and_then(Value::as_str)
+            == Some(crate::meta::VERSION);
+        v.push(if same_version {
+            "the sidecar's input_hash does not match the table it describes: it was edited by hand"
+                .into()
+        } else {
+            "written by another brdfbake version: its input_hash differs from this version's".into()
+        });
+    }
+    if rb.scale != 1.0 {
+        v.push(format!(
+            "texels are stored as value x {}; divide by it",
+            rb.scale
+        ));
+    }
+    if let Some(st) = rb.lut.as_ref().map(readback::stats) {
+        for c in st {
+            if c.nan + c.inf > 0 {
+                v.push(format!(
+                    "channel {}: {} NaN, {} Inf texels",
+                    c.name, c.nan, c.inf
+                ));
+            }
+        }
+    }
+    v
+}

@@ -1,0 +1,616 @@
+//! Reading back what brdfbake wrote: a texture (EXR or KTX2) and/or its JSON sidecar
+//! (`brdfbake.lut/1`) become a [`Lut`] plus the table specification the sidecar describes,
+//! rebuilt exactly (its input hash is recomputed and compared).
+//!
+//! Files brdfbake did not write are rejected with [`ReadError::Input`]: an EXR needs our
+//! `brdfbake:schema` header attribute, a KTX2 our `KTXwriter`, a JSON file our schema.
+
+use crate::encode::exr::{decode_exr, ATTRIBUTE_PREFIX};
+use crate::lut::{Axis, Channel, Convention, Lut, Quantity};
+use crate::meta;
+use crate::model::RoughnessQuantity;
+use crate::preset::PresetTable;
+use serde_json::{json, Map, Value};
+use std::path::{Path, PathBuf};
+
+/// Largest file read back (textures of at most 2^24 texels × 4 channels × 4 bytes, plus room).
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// Why a file could not be read back.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The file is not something brdfbake wrote, or is inconsistent (exit code 2).
+    #[error("{0}")]
+    Input(String),
+    /// The file exists but cannot be read (exit code 1).
+    #[error("{0}")]
+    Io(String),
+}
+
+/// A texture and/or sidecar read back.
+#[derive(Debug, Clone)]
+pub struct Readback {
+    /// The texture file, if one was found.
+    pub texture: Option<PathBuf>,
+    /// `exr` or `ktx2` when a texture was read.
+    pub texture_format: Option<&'static str>,
+    /// The sidecar's path, if one was found.
+    pub sidecar_path: Option<PathBuf>,
+    /// The sidecar's JSON.
+    pub sidecar: Option<Value>,
+    /// The table the sidecar describes, rebuilt (validated) from it.
+    pub table: Option<PresetTable>,
+    /// The preset name recorded in the sidecar (or the EXR header).
+    pub preset: Option<String>,
+    /// Whether the rebuilt table's input hash equals the sidecar's (`None`: no sidecar).
+    pub hash_matches: Option<bool>,
+    /// What the texture itself says: EXR `brdfbake:` attributes (prefix removed), KTX2
+    /// header facts.
+    pub file_facts: Vec<(String, String)>,
+    /// The stored texels (stored = value × scale) with the sidecar's axes, or, without a
+    /// sidecar, the axes the file itself tells (generic `x`, `y` when it tells none).
+    pub lut: Option<Lut>,
+    /// Stored value = value × scale.
+    pub scale: f64,
+}
+
+fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
+    let meta = std::fs::metadata(path).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            ReadError::Input(format!("{}: no such file", path.display()))
+        } else {
+            ReadError::Io(format!("cannot read {}: {e}", path.display()))
+        }
+    })?;
+    if meta.is_dir() {
+        return Err(ReadError::Input(format!(
+            "{}: is a directory; give a .exr, .ktx2 or .json file brdfbake wrote",
+            path.display()
+        )));
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(ReadError::Input(format!(
+            "{}: {} bytes is larger than any table brdfbake writes",
+            path.display(),
+            meta.len()
+        )));
+    }
+    std::fs::read(path).map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))
+}
+
+fn ext_of(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Reads `path` (`.exr`, `.ktx2` or the `.json` sidecar) and whatever of the pair lies next
+/// to it.
+pub fn read(path: &Path) -> Result<Readback, ReadError> {
+    let ext = ext_of(path);
+    let (texture, sidecar_path) = match ext.as_str() {
+        "exr" | "ktx2" => {
+            let j = path.with_extension("json");
+            (Some(path.to_path_buf()), j.is_file().then_some(j))
+        }
+        "json" => (None, Some(path.to_path_buf())),
+        _ => {
+            return Err(ReadError::Input(format!(
+                "{}: not a file brdfbake reads back (accepted: .exr, .ktx2, or the .json sidecar)",
+                path.display()
+            )))
+        }
+    };
+    let mut rb = Readback {
+        texture: None,
+        texture_format: None,
+        sidecar_path: None,
+        sidecar: None,
+        table: None,
+        preset: None,
+        hash_matches: None,
+        file_facts: Vec::new(),
+        lut: None,
+        scale: 1.0,
+    };
+    if let Some(sp) = &sidecar_path {
+        let bytes = read_bytes(sp)?;
+        let v: Value = serde_json::from_slice(&bytes).map_err(|e| {
+            ReadError::Input(format!(
+                "{}: not a brdfbake sidecar: invalid JSON ({e})",
+                sp.display()
+            ))
+        })?;
+        if v.get("schema").and_then(Value::as_str) != Some(meta::SCHEMA) {
+            return Err(ReadError::Input(format!(
+                "{}: not a brdfbake sidecar: \"schema\" must be {:?}",
+                sp.display(),
+                meta::SCHEMA
+            )));
+        }
+        let table = table_from_sidecar(&v)
+            .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
+        rb.hash_matches =
+            Some(v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)));
+        rb.preset = v.get("preset").and_then(Value::as_str).map(String::from);
+        rb.scale = table.scale;
+        rb.table = Some(table);
+        rb.sidecar = Some(v);
+        rb.sidecar_path = Some(sp.clone());
+    }
+    // a sidecar given directly: find its texture through its `files`
+    let texture = match texture {
+        Some(t) => Some(t),
+        None => {
+            let files = rb.sidecar.as_ref().and_then(|v| v.get("files"));
+            ["exr", "ktx2"].iter().find_map(|k| {
+                let name = files?.get(*k)?.as_str()?;
+                let p = path.with_file_name(name);
+                p.is_file().then_some(p)
+            })
+        }
+    };
+    if let Some(t) = texture {
+        let bytes = read_bytes(&t)?;
+        let ext = ext_of(&t);
+        let (lut, facts) = if ext == "exr" {
+            read_exr(&t, &bytes, rb.table.as_ref())?
+        } else {
+            read_ktx2(&t, &bytes, rb.table.as_ref())?
+        };
+        if rb.preset.is_none() {
+            rb.preset = facts
+                .iter()
+                .find(|(k, _)| k == "preset")
+                .map(|(_, v)| v.clone());
+            if let Some(s) = facts.iter().find(|(k, _)| k == "scale") {
+                rb.scale = s.1.parse().unwrap_or(1.0);
+            }
+        }
+        rb.lut = Some(lut);
+        rb.file_facts = facts;
+        rb.texture_format = Some(if ext == "exr" { "exr" } else { "ktx2" });
+        rb.texture = Some(t);
+    }
+    Ok(rb)
+}
+
+/// Rebuilds the table a sidecar describes by turning it back into a preset table and
+/// validating that like any preset.
+pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
+    let get = |path: &[&str]| -> Option<&Value> {
+        let mut x = v;
+        for p in path {
+            x = x.get(*p)?;
+        }
+        Some(x)
+    };
+    let need = |path: &[&str]| -> Result<&Value, String> {
+        get(path).ok_or_else(|| format!("the sidecar lacks {}", path.join(".")))
+    };
+    let name = need(&["table", "name"])?.clone();
+    let kind = need(&["table", "kind"])?.clone();
+    let mut model = Map::new();
+    if let Some(n) = get(&["model", "ndf", "name"]) {
+        model.insert("ndf".into(), n.clone());
+    }
+    model.insert(
+        "masking".into(),
+        need(&["model", "masking", "name"])?.clone(),
+    );
+    if let Some(f) = get(&["model", "fresnel", "parameters"]) {
+        model.insert("fresnel".into(), f.clone());
+    }
+    if let Some(d) = get(&["model", "diffuse", "weight"]) {
+        model.insert("diffuse".into(), d.clone());
+    }
+    let mut axes = Map::new();
+    for a in need(&["axes"])?
+        .as_array()
+        .ok_or("the sidecar's axes is not a list")?
+    {
+        let an = a
+            .get("name")
+            .and_then(Value::as_str)
+            .ok_or("an axis lacks its name")?;
+        let mut o = Map::new();
+        for k in ["size", "range", "convention"] {
+            o.insert(
+                k.into(),
+                a.get(k)
+                    .cloned()
+                    .ok_or_else(|| format!("axis {an} lacks {k}"))?,
+            );
+        }
+        if let Some(q) = a
+            .get("quantity")
+            .and_then(Value::as_str)
+            .and_then(|q| q.strip_prefix("roughness:"))
+        {
+            o.insert("quantity".into(), json!(q));
+        }
+        axes.insert(an.into(), Value::Object(o));
+    }
+    let mut t = Map::new();
+    t.insert("name".into(), name);
+    t.insert("kind".into(), kind.clone());
+    t.insert("model".into(), Value::Object(model));
+    t.insert("axes".into(), Value::Object(axes.clone()));
+    if kind == json!("dfg") {
+        if let Some(l) = get(&["model", "split_sum", "layout"]) {
+            t.insert("layout".into(), l.clone());
+        }
+        if get(&["model", "cloth"]).is_some() {
+            t.insert("cloth".into(), json!(true));
+        }
+    }
+    t.insert("storage".into(), need(&["storage", "texel_type"])?.clone());
+    t.insert(
+        "tolerance".into(),
+        need(&["quadrature", "tolerance"])?.clone(),
+    );
+    if let Some(s) = get(&["storage", "scale"]) {
+        t.insert("scale".into(), s.clone());
+    }
+    if axes.len() == 3 {
+        if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
+            t.insert("layout_3d".into(), l.clone());
+        }
+    }
+    let preset = json!({"schema": crate::preset::SCHEMA, "tables": [Value::Object(t)]});
+    let p = crate::preset::parse(&preset.to_string(), "sidecar", "sidecar")
+        .map_err(|e| format!("the sidecar does not describe a valid table: {e}"))?;
+    Ok(p.tables.into_iter().next().expect("one table"))
+}
+
+fn generic_axes(sizes: &[usize]) -> Vec<Axis> {
+    sizes
+        .iter()
+        .zip(["x", "y", "z"])
+        .map(|(&n, name)| Axis {
+            name: name.into(),
+            quantity: Quantity::Cosine,
+            size: n,
+            range: [0.0, 1.0],
+            convention: Convention::Centers,
+        })
+        .collect()
+}
+
+/// Parses our EXR `axisK` attribute: `name quantity convention [lo, hi] N texels`.
+fn parse_axis_attribute(s: &str) -> Option<Axis> {
+    let w: Vec<&str> = s.split_whitespace().collect();
+    if w.len() != 7 || w[6] != "texels" {
+        return None;
+    }
+    let quantity = if w[1] == "cosine" {
+        Quantity::Cosine
+    } else {
+        let q = w[1].strip_prefix("roughness:")?;
+        Quantity::Roughness(serde_json::from_value::<RoughnessQuantity>(json!(q)).ok()?)
+    };
+    let convention = serde_json::from_value::<Convention>(json!(w[2])).ok()?;
+    let lo: f64 = w[3].strip_prefix('[')?.strip_suffix(',')?.parse().ok()?;
+    let hi: f64 = w[4].strip_suffix(']')?.parse().ok()?;
+    Some(Axis {
+        name: w[0].into(),
+        quantity,
+        size: w[5].parse().ok()?,
+        range: [lo, hi],
+        convention,
+    })
+}
+
+fn mismatch(path: &Path, what: String) -> ReadError {
+    ReadError::Input(format!(
+        "{}: does not match its sidecar: {what}",
+        path.display()
+    ))
+}
+
+type Facts = Vec<(String, String)>;
+
+fn read_exr(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Facts), ReadError> {
+    let not_ours = |why: String| {
+        ReadError::Input(format!(
+            "{}: not an EXR file brdfbake wrote ({why})",
+            path.display()
+        ))
+    };
+    if !bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
+        return Err(not_ours("no OpenEXR magic number".into()));
+    }
+    let (w, h, channels, attrs) = decode_exr(bytes).map_err(not_ours)?;
+    let facts: Facts = attrs
+        .iter()
+        .filter_map(|(k, v)| Some((k.strip_prefix(ATTRIBUTE_PREFIX)?.to_string(), v.clone())))
+        .collect();
+    if !facts
+        .iter()
+        .any(|(k, v)| k == "schema" && v == meta::SCHEMA)
+    {
+        return Err(not_ours(format!(
+            "no {ATTRIBUTE_PREFIX}schema = {} header attribute",
+            meta::SCHEMA
+        )));
+    }
+    let (axes, chans) = match table {
+        Some(t) => (t.spec.axes.clone(), crate::table::channels(&t.spec)),
+        None => {
+            let mut axes = Vec::new();
+            for k in 0..3 {
+                if let Some((_, v)) = facts.iter().find(|(n, _)| *n == format!("axis{k}")) {
+                    axes.push(parse_axis_attribute(v).ok_or_else(|| {
+                        not_ours(format!(
+                            "unreadable {ATTRIBUTE_PREFIX}axis{k} attribute {v:?}"
+                        ))
+                    })?);
+                }
+            }
+            if axes.is_empty() {
+                axes = generic_axes(&[w, h]);
+            }
+            let chans = channels
+                .iter()
+                .map(|(n, _)| Channel {
+                    name: n.clone(),
+                    meaning: String::new(),
+                })
+                .collect();
+            (axes, chans)
+        }
+    };
+    let nx = axes.first().map_or(1, |a| a.size);
+    let rows: usize = axes.iter().skip(1).map(|a| a.size).product();
+    if (w, h) != (nx, rows) {
+        return Err(mismatch(
+            path,
+            format!("the image is {w}x{h}, the axes need {nx}x{rows}"),
+        ));
+    }
+    let nc = chans.len();
+    let mut data = vec![0f32; w * h * nc];
+    for (c, ch) in chans.iter().enumerate() {
+        let (_, values) = channels
+            .iter()
+            .find(|(n, _)| *n == ch.name)
+            .ok_or_else(|| {
+                mismatch(
+                    path,
+                    format!(
+                        "no channel {:?} (the file has {})",
+                        ch.name,
+                        channels
+                            .iter()
+                            .map(|(n, _)| n.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })?;
+        if values.len() != w * h {
+            return Err(mismatch(
+                path,
+                format!("channel {} has {} samples", ch.name, values.len()),
+            ));
+        }
+        for (i, v) in values.iter().enumerate() {
+            data[i * nc + c] = *v;
+        }
+    }
+    if channels.len() != nc {
+        return Err(mismatch(
+            path,
+            format!("{} channels, the sidecar lists {nc}", channels.len()),
+        ));
+    }
+    Ok((
+        Lut {
+            axes,
+            channels: chans,
+            data,
+            error_estimate: vec![f64::NAN; nc],
+            evaluations: 0,
+        },
+        facts,
+    ))
+}
+
+fn read_ktx2(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Facts), ReadError> {
+    let not_ours = |why: String| {
+        ReadError::Input(format!(
+            "{}: not a KTX2 file brdfbake wrote ({why})",
+            path.display()
+        ))
+    };
+    let r = ::ktx2::Reader::new(bytes).map_err(|e| not_ours(format!("{e:?}")))?;
+    let writer = r.writer().unwrap_or("").to_string();
+    if !writer.starts_with("brdfbake ") {
+        return Err(not_ours(format!("KTXwriter is {writer:?}")));
+    }
+    let hd = r.header();
+    let (comp_bytes, components) = match hd.format {
+        Some(::ktx2::Format::R32_SFLOAT) => (4, 1),
+        Some(::ktx2::Format::R32G32_SFLOAT) => (4, 2),
+        Some(::ktx2::Format::R32G32B32A32_SFLOAT) => (4, 4),
+        Some(::ktx2::Format::R16_SFLOAT) => (2, 1),
+        Some(::ktx2::Format::R16G16_SFLOAT) => (2, 2),
+        Some(::ktx2::Format::R16G16B16A16_SFLOAT) => (2, 4),
+        f => return Err(not_ours(format!("unexpected vkFormat {f:?}"))),
+    };
+    if hd.supercompression_scheme.is_some() || hd.level_count != 1 {
+        return Err(not_ours("supercompressed or mipmapped".into()));
+    }
+    let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
+    let d = (hd.pixel_depth.max(1) * hd.layer_count.max(1)) as usize;
+    let mut facts: Facts = vec![
+        ("writer".into(), writer),
+        (
+            "vk_format".into(),
+            format!("{:?}", hd.format.expect("checked")),
+        ),
+        (
+            "size".into(),
+            format!(
+                "{w}x{h}, depth {}, layers {}",
+                hd.pixel_depth, hd.layer_count
+            ),
+        ),
+    ];
+    for (k, v) in r.key_value_data() {
+        if k == "KTXorientation" {
+            facts.push((
+                "orientation".into(),
+                String::from_utf8_lossy(v)
+                    .trim_end_matches('\0')
+                    .to_string(),
+            ));
+        }
+    }
+    let level = r
+        .levels()
+        .next()
+        .ok_or_else(|| not_ours("no level".into()))?;
+    let texels = w * h * d;
+    if level.data.len() != texels * components * comp_bytes {
+        return Err(not_ours("level size does not match its header".into()));
+    }
+    let raw: Vec<f32> = level
+        .data
+        .chunks_exact(comp_bytes)
+        .map(|b| {
+            if comp_bytes == 4 {
+                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+            } else {
+                half::f16::from_le_bytes([b[0], b[1]]).to_f32()
+            }
+        })
+        .collect();
+    let (axes, chans) = match table {
+        Some(t) => (t.spec.axes.clone(), crate::table::channels(&t.spec)),
+        None => {
+            let sizes: Vec<usize> = if d > 1 {
+                vec![w, h, d]
+            } else if h > 1 {
+                vec![w, h]
+            } else {
+                vec![w]
+            };
+            let chans = ["R", "G", "B", "A"][..components]
+                .iter()
+                .map(|n| Channel {
+                    name: n.to_string(),
+                    meaning: String::new(),
+                })
+                .collect();
+            (generic_axes(&sizes), chans)
+        }
+    };
+    let n: usize = axes.iter().map(|a| a.size).product();
+    let nc = chans.len();
+    let expected = if nc == 3 { 4 } else { nc };
+    if n != texels || expected != components {
+        return Err(mismatch(
+            path,
+            format!(
+                "{texels} texels of {components} components, the sidecar describes {n} texels of {nc} channels"
+            ),
+        ));
+    }
+    let data: Vec<f32> = raw
+        .chunks_exact(components)
+        .flat_map(|t| t[..nc].to_vec())
+        .collect();
+    Ok((
+        Lut {
+            axes,
+            channels: chans,
+            data,
+            error_estimate: vec![f64::NAN; nc],
+            evaluations: 0,
+        },
+        facts,
+    ))
+}
+
+/// Per-channel statistics of stored texels.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ChannelStats {
+    pub name: String,
+    pub min: f64,
+    pub max: f64,
+    pub mean: f64,
+    pub nan: usize,
+    pub inf: usize,
+}
+
+/// min/max/mean over finite texels, and the NaN and Inf counts, per channel.
+pub fn stats(lut: &Lut) -> Vec<ChannelStats> {
+    let nc = lut.channels.len();
+    lut.channels
+        .iter()
+        .enumerate()
+        .map(|(c, ch)| {
+            let (mut min, mut max, mut sum, mut n, mut nan, mut inf) =
+                (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0usize, 0, 0);
+            for v in lut.data.iter().skip(c).step_by(nc.max(1)) {
+                let v = *v as f64;
+                if v.is_nan() {
+                    nan += 1;
+                } else if v.is_infinite() {
+                    inf += 1;
+                } else {
+                    min = min.min(v);
+                    max = max.max(v);
+                    sum += v;
+                    n += 1;
+                }
+            }
+            ChannelStats {
+                name: ch.name.clone(),
+                min,
+                max,
+                mean: if n > 0 { sum / n as f64 } else { f64::NAN },
+                nan,
+                inf,
+            }
+        })
+        .collect()
+}
+
+/// The exact value of every channel of `table` at the coordinates `x` (one per axis, in the
+/// axes' own quantities), computed by the table module at tolerance `tol` (a one-texel table
+/// at exactly those coordinates). Returns the values and their error estimates.
+pub fn exact_at(
+    table: &crate::table::TableSpec,
+    x: &[f64],
+    tol: f64,
+) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let mut spec = table.clone();
+    spec.tolerance = tol;
+    for (a, &v) in spec.axes.iter_mut().zip(x) {
+        a.size = 1;
+        a.range = [v, v];
+        a.convention = Convention::Centers;
+    }
+    spec.validate()?;
+    use crate::table::{albedo, dfg, local, TableKind};
+    let f = match spec.kind {
+        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
+            local::texel_fn(&spec)
+        }
+        TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(&spec),
+        TableKind::Dfg => dfg::texel_fn(&spec),
+    };
+    let r = f([0, 0, 0]);
+    Ok((r.value, r.error))
+}
