@@ -1,0 +1,504 @@
+//! CLI tests of the tools around a bake: `bake --check`, `bake --json`, `inspect`, `probe`,
+//! `eval`, `verify` — successes, exit codes (0 ok, 1 failed, 2 bad input) and the messages
+//! for bad paths, unreadable files and files brdfbake did not write.
+
+use serde_json::Value;
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// One small table of every kind, in f32 (verify at 1e-6 passes) except `g2h` (f16).
+const TINY: &str = r#"{
+  "schema": "brdfbake.preset/1",
+  "tables": [
+    { "name": "dfg", "kind": "dfg", "layout": "filament", "cloth": true,
+      "model": { "ndf": "ggx", "masking": "smith-height-correlated" },
+      "axes": { "cos_theta_v": { "size": 6 },
+                "roughness": { "size": 5, "quantity": "perceptual", "range": [0.1, 1], "convention": "endpoints" } },
+      "formats": ["exr", "ktx2", "png"] },
+    { "name": "env", "kind": "dfg", "layout": "karis",
+      "model": { "ndf": "beckmann", "masking": "smith-separable" },
+      "axes": { "cos_theta_v": { "size": 4 }, "roughness": { "size": 4, "quantity": "cook-torrance-m" } },
+      "formats": ["ktx2"] },
+    { "name": "d", "kind": "ndf", "model": { "ndf": "blinn-phong" }, "scale": 0.01,
+      "axes": { "cos_theta_h": { "size": 8, "range": [0, 1], "convention": "endpoints" },
+                "roughness": { "size": 4, "quantity": "blinn-phong-exponent", "range": [1, 100] } } },
+    { "name": "g1", "kind": "g1", "model": { "ndf": "gaussian" },
+      "axes": { "cos_theta": { "size": 5 }, "roughness": { "size": 3, "quantity": "alpha", "range": [0.2, 0.8] } } },
+    { "name": "g2h", "kind": "g2", "storage": "f16", "layout_3d": "array",
+      "model": { "ndf": "ggx", "masking": "smith-height-correlated" },
+      "axes": { "cos_theta_v": { "size": 3 }, "cos_theta_l": { "size": 4 }, "roughness": { "size": 3, "quantity": "alpha" } },
+      "formats": ["exr", "ktx2"] },
+    { "name": "vg", "kind": "vgroove",
+      "axes": { "n_dot_l": { "size": 3 }, "n_dot_h": { "size": 3 }, "n_dot_v": { "size": 2 } } },
+    { "name": "e", "kind": "albedo",
+      "model": { "ndf": "ggx", "masking": "smith-height-correlated",
+                 "fresnel": { "type": "dielectric", "eta": 1.5 }, "diffuse": 0.5 },
+      "axes": { "cos_theta_v": { "size": 4 }, "roughness": { "size": 3, "quantity": "perceptual" } } },
+    { "name": "eavg", "kind": "albedo-avg", "tolerance": 1e-8,
+      "model": { "ndf": "ggx", "masking": "smith-height-correlated" },
+      "axes": { "roughness": { "size": 4, "quantity": "perceptual" } } }
+  ]
+}"#;
+
+fn bin(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_brdfbake"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("runs")
+}
+
+fn text(o: &Output) -> (String, String) {
+    (
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[track_caller]
+fn expect(o: &Output, code: i32, needle: &str) -> String {
+    let (out, err) = text(o);
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "stdout:\n{out}\nstderr:\n{err}"
+    );
+    assert!(
+        out.contains(needle) || err.contains(needle),
+        "{needle:?} not in\nstdout:\n{out}\nstderr:\n{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    out
+}
+
+/// A temporary directory with `tiny.json` baked into `out/tiny/`.
+fn baked() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("tiny.json"), TINY).unwrap();
+    let o = bin(dir.path(), &["bake", "tiny.json", "-q"]);
+    expect(&o, 0, "");
+    dir
+}
+
+#[test]
+fn bake_json_summary_and_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(d.join("tiny.json"), TINY).unwrap();
+    // nothing baked yet: everything missing, nothing written
+    let o = bin(d, &["bake", "tiny.json", "--check"]);
+    expect(&o, 1, "missing");
+    assert!(!d.join("out").exists());
+    let o = bin(d, &["bake", "tiny.json", "--json"]);
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+    let tables = doc["tables"].as_array().unwrap();
+    assert_eq!(tables.len(), 8);
+    assert_eq!(tables[0]["table"], "dfg");
+    assert_eq!(tables[0]["size"], serde_json::json!([6, 5]));
+    assert!(tables[0]["estimated_max_error"]["G"].as_f64().unwrap() < 1e-6);
+    assert!(tables[0]["files"].as_array().unwrap().len() >= 3);
+    // up to date
+    let o = bin(d, &["bake", "tiny.json", "--check"]);
+    expect(&o, 0, "8 table(s) up to date");
+    let o = bin(d, &["bake", "tiny.json", "--check", "--json"]);
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+    assert_eq!(doc["up_to_date"], true);
+    // a removed file and an edited preset are reported; nothing is written
+    fs::remove_file(d.join("out/tiny/dfg.preview-B.png")).unwrap();
+    fs::write(
+        d.join("tiny.json"),
+        TINY.replace("\"size\": 6", "\"size\": 7"),
+    )
+    .unwrap();
+    let o = bin(d, &["bake", "tiny.json", "--check"]);
+    let out = expect(&o, 1, "dfg.preview-B.png: missing");
+    assert!(
+        out.contains("tiny/dfg") && out.contains("stale: input hash"),
+        "{out}"
+    );
+    assert!(!out.contains("tiny/env"), "{out}");
+    assert!(!d.join("out/tiny/dfg.preview-B.png").exists());
+    // --format override: a format never written is missing
+    let o = bin(d, &["bake", "tiny.json", "--check", "--format", "wgsl"]);
+    expect(&o, 1, "g1.wgsl: missing");
+    // bad preset name: input error
+    let o = bin(d, &["bake", "no-such-preset", "--check"]);
+    expect(&o, 2, "unknown preset");
+}
+
+#[test]
+fn inspect_every_table_and_format() {
+    let dir = baked();
+    let d = dir.path();
+    for f in [
+        "dfg.exr", "dfg.ktx2", "dfg.json", "env.ktx2", "d.exr", "g1.exr", "g2h.exr", "g2h.ktx2",
+        "vg.exr", "e.exr", "eavg.exr",
+    ] {
+        let p = format!("out/tiny/{f}");
+        let o = bin(d, &["inspect", &p, "--json"]);
+        let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+        assert_eq!(doc["input_hash_consistent"], true, "{f}: {doc}");
+        assert_eq!(doc["preset"], "tiny");
+        for s in doc["stats"].as_array().unwrap() {
+            assert_eq!(s["nan"], 0);
+            assert!(s["min"].as_f64().unwrap() <= s["max"].as_f64().unwrap());
+        }
+    }
+    let o = bin(d, &["inspect", "out/tiny/dfg.exr"]);
+    let out = expect(&o, 0, "ggx / smith-height-correlated");
+    for w in [
+        "cos_theta_v",
+        "roughness (perceptual",
+        "endpoints",
+        "estimated bake error",
+        "mix(R, G, F0)",
+    ] {
+        assert!(out.contains(w), "{w}: {out}");
+    }
+    let o = bin(d, &["inspect", "out/tiny/d.exr"]);
+    expect(&o, 0, "stored as value x 0.01");
+}
+
+#[test]
+fn inspect_without_sidecar_and_bad_files() {
+    let dir = baked();
+    let d = dir.path();
+    fs::copy(d.join("out/tiny/dfg.exr"), d.join("lone.exr")).unwrap();
+    fs::copy(d.join("out/tiny/g2h.ktx2"), d.join("lone.ktx2")).unwrap();
+    let o = bin(d, &["inspect", "lone.exr"]);
+    let out = expect(&o, 0, "none found");
+    assert!(
+        out.contains("cos_theta_v") && out.contains("input_hash"),
+        "{out}"
+    );
+    let o = bin(d, &["inspect", "lone.ktx2"]);
+    expect(&o, 0, "R16_SFLOAT");
+    // probe and verify need the sidecar
+    let o = bin(
+        d,
+        &["probe", "lone.exr", "--at", "cos_theta_v=0.5,roughness=0.5"],
+    );
+    expect(&o, 2, "needs the JSON sidecar");
+    let o = bin(d, &["verify", "lone.exr"]);
+    expect(&o, 2, "needs the JSON sidecar");
+    // not ours
+    fs::write(d.join("junk.exr"), b"not an exr at all").unwrap();
+    expect(
+        &bin(d, &["inspect", "junk.exr"]),
+        2,
+        "not an EXR file brdfbake wrote",
+    );
+    fs::write(d.join("junk.ktx2"), b"\xabKTX 20\xbb\r\n\x1a\nshort").unwrap();
+    expect(
+        &bin(d, &["inspect", "junk.ktx2"]),
+        2,
+        "not a KTX2 file brdfbake wrote",
+    );
+    fs::write(d.join("other.json"), r#"{"schema": "something/1"}"#).unwrap();
+    expect(
+        &bin(d, &["inspect", "other.json"]),
+        2,
+        "not a brdfbake sidecar",
+    );
+    fs::write(d.join("broken.json"), "{").unwrap();
+    expect(&bin(d, &["inspect", "broken.json"]), 2, "invalid JSON");
+    // a sidecar edited so it describes no valid table
+    let side = fs::read_to_string(d.join("out/tiny/e.json")).unwrap();
+    fs::write(
+        d.join("edited.json"),
+        side.replace("\"smith-height-correlated\"", "\"fancy\""),
+    )
+    .unwrap();
+    expect(
+        &bin(d, &["inspect", "edited.json"]),
+        2,
+        "does not describe a valid table",
+    );
+    // wrong kinds of path
+    expect(&bin(d, &["inspect", "nope.exr"]), 2, "no such file");
+    expect(
+        &bin(d, &["inspect", "tiny.txt"]),
+        2,
+        "accepted: .exr, .ktx2",
+    );
+    fs::create_dir(d.join("dir.exr")).unwrap();
+    expect(&bin(d, &["inspect", "dir.exr"]), 2, "is a directory");
+    // a texture whose sidecar belongs to another table
+    fs::copy(d.join("out/tiny/g1.json"), d.join("lone.json")).unwrap();
+    expect(
+        &bin(d, &["inspect", "lone.exr"]),
+        2,
+        "does not match its sidecar",
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn unreadable_file_is_an_environment_failure() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = baked();
+    let p = dir.path().join("out/tiny/g1.exr");
+    fs::set_permissions(&p, fs::Permissions::from_mode(0o000)).unwrap();
+    if fs::read(&p).is_ok() {
+        return; // running as root: permissions are not enforced
+    }
+    expect(
+        &bin(dir.path(), &["inspect", "out/tiny/g1.exr"]),
+        1,
+        "cannot read",
+    );
+}
+
+#[test]
+fn probe_matches_exact_values() {
+    let dir = baked();
+    let d = dir.path();
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/dfg.exr",
+            "--at",
+            "roughness=0.55,cos_theta_v=0.5",
+            "--json",
+        ],
+    );
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+    let ch = doc["channels"].as_array().unwrap();
+    assert_eq!(ch.len(), 3);
+    for c in ch {
+        let (g, e) = (c["gpu"].as_f64().unwrap(), c["exact"].as_f64().unwrap());
+        assert!((g - e).abs() < 0.05, "{c}"); // a coarse 6x5 table
+        assert!(c["exact_error_estimate"].as_f64().unwrap() < 1e-9);
+    }
+    // at a texel of an endpoints axis the GPU reads the texel itself
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/eavg.exr",
+            "--at",
+            "roughness=0.375",
+            "--json",
+        ],
+    );
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+    let c = &doc["channels"][0];
+    assert!(c["difference"].as_f64().unwrap().abs() < 1e-6, "{c}");
+    // a scaled table: the probe divides by the scale
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/d.json",
+            "--at",
+            "cos_theta_h=1,roughness=13.375",
+            "--json",
+        ],
+    );
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+    let c = &doc["channels"][0];
+    assert!(c["difference"].as_f64().unwrap().abs() < 1e-6, "{c}");
+    // 3D, f16, KTX2 array
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/g2h.ktx2",
+            "--at",
+            "cos_theta_v=0.5,cos_theta_l=0.625,roughness=0.5",
+        ],
+    );
+    expect(&o, 0, "G2");
+    // outside the range: clamped, and said so
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/g1.exr",
+            "--at",
+            "cos_theta=0.5,roughness=0.9",
+        ],
+    );
+    expect(&o, 0, "clamps to the edge");
+    // bad --at
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/dfg.exr",
+            "--at",
+            "cos_theta=0.5,roughness=0.3",
+        ],
+    );
+    expect(
+        &o,
+        2,
+        "unknown axis \"cos_theta\" (axes of this table: cos_theta_v, roughness)",
+    );
+    let o = bin(d, &["probe", "out/tiny/dfg.exr", "--at", "cos_theta_v=0.5"]);
+    expect(&o, 2, "missing roughness");
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/dfg.exr",
+            "--at",
+            "cos_theta_v=x,roughness=1",
+        ],
+    );
+    expect(&o, 2, "not a finite number");
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/dfg.exr",
+            "--at",
+            "cos_theta_v=1.5,roughness=0.3",
+        ],
+    );
+    expect(&o, 2, "within [0, 1]");
+    let o = bin(d, &["probe", "out/tiny/dfg.exr"]);
+    expect(&o, 2, "--at");
+}
+
+#[test]
+fn eval_known_values() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let val = |args: &[&str], key: &str| -> f64 {
+        let mut a = vec!["eval"];
+        a.extend_from_slice(args);
+        a.push("--json");
+        let o = bin(d, &a);
+        let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+        doc["values"][key].as_f64().unwrap()
+    };
+    // GGX, alpha = 1, normal incidence: E = 1 - ln 2
+    let e = val(&["e", "--alpha", "1", "--cos-theta", "1"], "E");
+    assert!((e - (1.0 - 2f64.ln())).abs() < 1e-9, "{e}");
+    // GGX D at n.h = 1: 1/(pi alpha^2)
+    let dv = val(&["d", "--alpha", "0.3", "--cos-theta", "1"], "D");
+    assert!(
+        (dv - 1.0 / (std::f64::consts::PI * 0.09)).abs() < 1e-9,
+        "{dv}"
+    );
+    // G1 at normal incidence is 1
+    assert!((val(&["g1", "--roughness", "0.5", "--cos-theta", "1"], "G1") - 1.0).abs() < 1e-12);
+    // split sum: A + B = G (Filament), and E at F0 = 1 equals A + B
+    let a = val(&["dfg", "--roughness", "0.5", "--cos-theta", "0.5"], "A");
+    let b = val(&["dfg", "--roughness", "0.5", "--cos-theta", "0.5"], "B");
+    let e = val(&["e", "--roughness", "0.5", "--cos-theta", "0.5"], "E");
+    assert!((a + b - e).abs() < 1e-9);
+    let s = val(
+        &["sheen", "--roughness", "0.5", "--cos-theta", "0.5"],
+        "sheen",
+    );
+    assert!(s > 0.0 && s < 2.0);
+    let avg = val(&["e-avg", "--alpha", "0.5"], "E_avg");
+    assert!(avg > 0.5 && avg < 1.0);
+    let g2 = val(
+        &[
+            "g2",
+            "--alpha",
+            "0.5",
+            "--cos-theta",
+            "0.5",
+            "--cos-theta-l",
+            "0.7",
+        ],
+        "G2",
+    );
+    assert!(g2 > 0.0 && g2 < 1.0);
+    let o = bin(d, &["eval", "d", "--alpha", "0.3", "--cos-theta", "0.9"]);
+    expect(&o, 0, "D = ");
+    // bad input
+    expect(
+        &bin(d, &["eval", "e", "--alpha", "0.3"]),
+        2,
+        "needs --cos-theta",
+    );
+    expect(
+        &bin(d, &["eval", "e", "--cos-theta", "0.3"]),
+        2,
+        "--roughness",
+    );
+    expect(
+        &bin(
+            d,
+            &[
+                "eval",
+                "d",
+                "--ndf",
+                "phong",
+                "--alpha",
+                "0.3",
+                "--cos-theta",
+                "1",
+            ],
+        ),
+        2,
+        "accepted: beckmann",
+    );
+    expect(
+        &bin(d, &["eval", "d", "--alpha", "0", "--cos-theta", "1"]),
+        2,
+        "alpha",
+    );
+    expect(
+        &bin(d, &["eval", "e", "--alpha", "0.3", "--cos-theta", "0"]),
+        2,
+        "cosine 0",
+    );
+    expect(
+        &bin(d, &["eval", "lambda", "--alpha", "0.3"]),
+        2,
+        "possible values",
+    );
+}
+
+#[test]
+fn verify_files_and_presets() {
+    let dir = baked();
+    let d = dir.path();
+    for f in [
+        "dfg.exr",
+        "env.ktx2",
+        "d.exr",
+        "g1.exr",
+        "vg.exr",
+        "e.exr",
+        "eavg.json",
+    ] {
+        let p = format!("out/tiny/{f}");
+        let o = bin(d, &["verify", &p, "--json"]);
+        let doc: Value = serde_json::from_str(&expect(&o, 0, "")).unwrap();
+        assert_eq!(doc["ok"], true, "{f}: {doc}");
+        assert!(doc["tables"][0]["texels_checked"].as_u64().unwrap() >= 4);
+    }
+    // f16 storage is over 1e-6 but within its rounding
+    let o = bin(d, &["verify", "out/tiny/g2h.ktx2"]);
+    expect(&o, 1, "OVER TOLERANCE");
+    let o = bin(d, &["verify", "out/tiny/g2h.exr", "--tolerance", "1e-3"]);
+    expect(&o, 0, "ok");
+    // a tampered texture fails: overwrite the first texel of a KTX2 file (f32, last bytes)
+    let mut bytes = fs::read(d.join("out/tiny/env.ktx2")).unwrap();
+    let n = bytes.len();
+    bytes[n - 4..].copy_from_slice(&0.5f32.to_le_bytes());
+    fs::write(d.join("out/tiny/env.ktx2"), bytes).unwrap();
+    expect(
+        &bin(d, &["verify", "out/tiny/env.ktx2"]),
+        1,
+        "over the tolerance",
+    );
+    // a preset, baked in memory
+    let o = bin(d, &["verify", "tiny.json"]);
+    expect(&o, 0, "tiny/eavg");
+    expect(&bin(d, &["verify", "no-such-preset"]), 2, "unknown preset");
+    expect(
+        &bin(d, &["verify", "tiny.json", "--tolerance=-1"]),
+        2,
+        "--tolerance",
+    );
+}
