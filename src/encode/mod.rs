@@ -4,6 +4,9 @@
 
 pub mod exr;
 pub mod ktx2;
+pub mod png;
+pub mod shader;
+pub mod source;
 
 pub use self::exr::{decode_exr, DecodedExr, ExrEncoder};
 
