@@ -67,7 +67,7 @@ pub fn encode(
             table_name: name,
             array_3d: table.layout_3d == Layout3d::Array,
         }),
-        Format::Png => PngPreview { table_name: name }.encode_all(lut),
+        Format::Png => PngPreview { table_name: name }.encode_all_with_attributes(lut, attrs),
         Format::H => one(&CHeader {
             table_name: name,
             half,

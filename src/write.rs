@@ -276,10 +276,9 @@ mod tests {
         assert_eq!(fs::read(sub.join("b")).unwrap(), b"2");
     }
 
-    /// A rename failing half-way reports which files were already replaced and removes the
-    /// remaining temporary files.
+    /// A target that is a directory fails the whole set before anything is replaced.
     #[test]
-    fn write_all_reports_a_failed_commit() {
+    fn write_all_refuses_a_target_that_is_not_a_file_before_any_rename() {
         let dir = tempfile::tempdir().unwrap();
         let blocked = dir.path().join("blocked");
         fs::create_dir(&blocked).unwrap();
@@ -290,14 +289,13 @@ mod tests {
             (dir.path().join("c"), b"3".to_vec()),
         ];
         match write_all_atomic(&files).unwrap_err() {
-            WriteError::Commit {
-                path, committed, ..
-            } => {
+            WriteError::Prepare { path, source } => {
                 assert_eq!(path, blocked);
-                assert_eq!(committed, [dir.path().join("a")]);
+                assert!(source.to_string().contains("not a regular file"), "{source}");
             }
             other => panic!("unexpected error {other:?}"),
         }
-        assert_eq!(entries(dir.path()), ["a", "blocked"]);
+        // nothing was replaced or created, and no temporary file is left
+        assert_eq!(entries(dir.path()), ["blocked"]);
     }
 }

@@ -26,7 +26,7 @@ pub enum EncodeError {
     /// `value` is the channel's largest-magnitude value.
     #[error(
         "table `{table}`, channel `{channel}`: value {value} cannot be stored as {format} \
-         (it would become infinite); store the table as f32 or rescale it"
+         (it would become infinite); store the table as f32 (\"storage\": \"f32\") or set its \"scale\" below 1"
     )]
     Unrepresentable {
         table: String,
