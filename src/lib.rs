@@ -38,6 +38,7 @@ pub mod pipeline;
 pub mod preset;
 pub mod presets;
 pub mod readback;
+pub mod report;
 pub mod table;
 pub mod write;
 

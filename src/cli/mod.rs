@@ -2,10 +2,12 @@
 //! environment (I/O), 2 bad input (arguments, presets).
 
 mod bake;
+mod completions;
 mod eval;
 mod inspect;
 mod list;
 mod probe;
+mod report;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -44,6 +46,12 @@ pub enum Command {
     Eval(eval::EvalArgs),
     /// Recompute a spread of texels at high accuracy; exit 1 over the tolerance.
     Verify(verify::VerifyArgs),
+    /// Write a self-contained HTML report (heatmaps, E curves, Karis' approximation) of presets.
+    Report(report::ReportArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(completions::CompletionsArgs),
+    /// Print the man page (roff), of brdfbake or of one subcommand.
+    Man(completions::ManArgs),
 }
 
 /// An error with its exit code.
@@ -85,6 +93,9 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Command::Probe(a) => probe::run(a),
         Command::Eval(a) => eval::run(a),
         Command::Verify(a) => verify::run(a),
+        Command::Report(a) => report::run(a),
+        Command::Completions(a) => completions::run(a),
+        Command::Man(a) => completions::run_man(a),
     };
     match r {
         Ok(()) => EXIT_OK,

@@ -1,0 +1,322 @@
+//! A self-contained HTML report of baked tables: inline SVG only (no scripts, no network).
+//! Per table: a heatmap per channel (labelled axes, colour bar), and where they apply E(μ)
+//! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
+//! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
+
+mod svg;
+
+use crate::lut::{Lut, Quantity};
+use crate::model::NdfKind;
+use crate::table::{DfgLayout, TableKind, TableSpec};
+use std::fmt::Write;
+pub use svg::{heatmap, line_plot, Series};
+
+/// One baked table to show.
+pub struct ReportTable {
+    pub preset: String,
+    pub spec: TableSpec,
+    /// The table's values (unscaled).
+    pub lut: Lut,
+}
+
+/// Karis' analytic fit of the split-sum A, B for GGX ("Physically Based Shading on Mobile",
+/// 2014), at perceptual roughness `r` and `n_dot_v`.
+pub fn env_brdf_approx(r: f64, n_dot_v: f64) -> (f64, f64) {
+    let c0 = [-1.0, -0.0275, -0.572, 0.022];
+    let c1 = [1.0, 0.0425, 1.04, -0.04];
+    let v: Vec<f64> = (0..4).map(|i| r * c0[i] + c1[i]).collect();
+    let a004 = (v[0] * v[0]).min((-9.28 * n_dot_v).exp2()) * v[0] + v[1];
+    (-1.04 * a004 + v[2], 1.04 * a004 + v[3])
+}
+
+/// Escapes text for HTML.
+pub fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The directional albedo E at (μ, roughness coordinate) a table holds, if it holds one.
+fn albedo_of(t: &ReportTable, mu: f64, r: f64) -> Option<f64> {
+    let v = t.lut.lookup(&[mu, r]);
+    match (t.spec.kind, t.spec.dfg_layout) {
+        (TableKind::Albedo, _) => Some(v[0]),
+        (TableKind::Dfg, Some(DfgLayout::Karis)) => Some(v[0] + v[1]),
+        (TableKind::Dfg, _) => Some(v[1]),
+        _ => None,
+    }
+}
+
+fn roughness_label(spec: &TableSpec) -> String {
+    match spec.axes.last().map(|a| a.quantity) {
+        Some(Quantity::Roughness(q)) => format!("roughness ({})", q.name()),
+        _ => "roughness".into(),
+    }
+}
+
+/// Five roughness coordinates spread over the axis' texel centres.
+fn roughness_picks(spec: &TableSpec) -> Vec<f64> {
+    let a = spec.axes.last().expect("axis");
+    let (lo, hi) = (a.coord(0), a.coord(a.size - 1));
+    (0..5).map(|i| lo + (hi - lo) * i as f64 / 4.0).collect()
+}
+
+const PALETTE: [&str; 6] = [
+    "#440154", "#3b528b", "#21918c", "#5ec962", "#c8a900", "#d1495b",
+];
+
+fn table_section(t: &ReportTable, out: &mut String) {
+    let spec = &t.spec;
+    let lut = &t.lut;
+    let _ = writeln!(
+        out,
+        "<section><h2>{} / {}</h2><p><b>{}</b>: {}<br>model: {}<br>axes: {}</p>",
+        esc(&t.preset),
+        esc(&spec.name),
+        spec.kind.name(),
+        esc(spec.kind.description()),
+        esc(&crate::meta::model_summary(spec)),
+        esc(&lut
+            .axes
+            .iter()
+            .map(|a| format!(
+                "{} ({} texels, [{}, {}], {})",
+                a.name,
+                a.size,
+                a.range[0],
+                a.range[1],
+                a.convention.name()
+            ))
+            .collect::<Vec<_>>()
+            .join("; "))
+    );
+    let _ = writeln!(out, "<div class=\"row\">");
+    for (c, ch) in lut.channels.iter().enumerate() {
+        out.push_str(&heatmap(lut, c, &format!("{} — {}", spec.name, ch.name)));
+    }
+    let _ = writeln!(out, "</div>");
+    let is_e = matches!(spec.kind, TableKind::Albedo | TableKind::Dfg);
+    if is_e {
+        let picks = roughness_picks(spec);
+        let mu_axis = &lut.axes[0];
+        let n = 64;
+        let mus: Vec<f64> = (0..=n)
+            .map(|i| mu_axis.range[0] + (mu_axis.range[1] - mu_axis.range[0]) * i as f64 / n as f64)
+            .collect();
+        let rl = roughness_label(spec);
+        let mut curves = Vec::new();
+        let mut losses = Vec::new();
+        for (k, r) in picks.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = mus
+                .iter()
+                .filter_map(|&m| albedo_of(t, m, *r).map(|e| (m, e)))
+                .collect();
+            let label = format!("{rl} = {r:.3}");
+            losses.push(Series {
+                label: label.clone(),
+                points: pts.iter().map(|(m, e)| (*m, 1.0 - e)).collect(),
+                colour: PALETTE[k % PALETTE.len()].into(),
+                dashed: false,
+            });
+            curves.push(Series {
+                label,
+                points: pts,
+                colour: PALETTE[k % PALETTE.len()].into(),
+                dashed: false,
+            });
+        }
+        let what = if spec.kind == TableKind::Dfg {
+            " (F0 = 1: E = A + B = G)"
+        } else {
+            ""
+        };
+        let _ = writeln!(out, "<div class=\"row\">");
+        out.push_str(&line_plot(
+            &format!("E(μ) of {}{what}", spec.name),
+            "cos θv = μ",
+            "E",
+            &curves,
+        ));
+        out.push_str(&line_plot(
+            &format!("energy loss 1 − E(μ) of {}", spec.name),
+            "cos θv = μ",
+            "1 − E",
+            &losses,
+        ));
+        // E_avg = 2 ∫ E μ dμ from the table (trapezoid over lookups, μ in the axis range)
+        let ra = lut.axes.last().expect("axis");
+        let rs: Vec<f64> = (0..=48)
+            .map(|i| ra.coord(0) + (ra.coord(ra.size - 1) - ra.coord(0)) * i as f64 / 48.0)
+            .collect();
+        let m = 256;
+        let avg: Vec<(f64, f64)> = rs
+            .iter()
+            .filter_map(|&r| {
+                let f = |i: usize| {
+                    let mu = (i as f64 + 0.5) / m as f64;
+                    albedo_of(t, mu, r).map(|e| 2.0 * e * mu / m as f64)
+                };
+                (0..m).map(f).sum::<Option<f64>>().map(|s| (r, s))
+            })
+            .collect();
+        out.push_str(&line_plot(
+            &format!(
+                "E_avg = 2∫E(μ)μ dμ from {} (midpoint rule over the table)",
+                spec.name
+            ),
+            &rl,
+            "E_avg",
+            &[Series {
+                label: "E_avg".into(),
+                points: avg,
+                colour: PALETTE[1].into(),
+                dashed: false,
+            }],
+        ));
+        let _ = writeln!(out, "</div>");
+    }
+    if spec.kind == TableKind::AlbedoAvg {
+        let a = &lut.axes[0];
+        let pts: Vec<(f64, f64)> = (0..a.size)
+            .map(|i| (a.coord(i), lut.data[i * lut.channels.len()] as f64))
+            .collect();
+        out.push_str(&line_plot(
+            &format!("E_avg vs roughness ({})", spec.name),
+            &roughness_label(spec),
+            "E_avg",
+            &[Series {
+                label: "E_avg (texels)".into(),
+                points: pts,
+                colour: PALETTE[1].into(),
+                dashed: false,
+            }],
+        ));
+    }
+    if spec.kind == TableKind::Dfg && spec.model.ndf == Some(NdfKind::Ggx) {
+        karis_section(t, out);
+    }
+    let _ = writeln!(out, "</section>");
+}
+
+fn karis_section(t: &ReportTable, out: &mut String) {
+    let spec = &t.spec;
+    let lut = &t.lut;
+    let ra = lut.axes.last().expect("axis");
+    let perceptual = |coord: f64| match ra.quantity {
+        Quantity::Roughness(q) => q.to_alpha(coord).sqrt(),
+        Quantity::Cosine => coord,
+    };
+    let ab = |mu: f64, r: f64| {
+        let v = lut.lookup(&[mu, r]);
+        match spec.dfg_layout {
+            Some(DfgLayout::Karis) => (v[0], v[1]),
+            _ => (v[1] - v[0], v[0]),
+        }
+    };
+    let mut series = Vec::new();
+    let mut max_a: f64 = 0.0;
+    let mut max_b: f64 = 0.0;
+    let mu_axis = &lut.axes[0];
+    for (k, r) in roughness_picks(spec)
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| k % 2 == 0)
+    {
+        let mut ta = Vec::new();
+        let mut tb = Vec::new();
+        let mut ka = Vec::new();
+        let mut kb = Vec::new();
+        for i in 0..=64 {
+            let mu = mu_axis.range[0] + (mu_axis.range[1] - mu_axis.range[0]) * i as f64 / 64.0;
+            let (a, b) = ab(mu, *r);
+            let (xa, xb) = env_brdf_approx(perceptual(*r), mu);
+            max_a = max_a.max((a - xa).abs());
+            max_b = max_b.max((b - xb).abs());
+            ta.push((mu, a));
+            tb.push((mu, b));
+            ka.push((mu, xa));
+            kb.push((mu, xb));
+        }
+        let col = PALETTE[k % PALETTE.len()].to_string();
+        let lab = format!("r = {:.3}", perceptual(*r));
+        series.push((
+            Series {
+                label: format!("A table, {lab}"),
+                points: ta,
+                colour: col.clone(),
+                dashed: false,
+            },
+            Series {
+                label: format!("A approx, {lab}"),
+                points: ka,
+                colour: col.clone(),
+                dashed: true,
+            },
+            Series {
+                label: format!("B table, {lab}"),
+                points: tb,
+                colour: col.clone(),
+                dashed: false,
+            },
+            Series {
+                label: format!("B approx, {lab}"),
+                points: kb,
+                colour: col,
+                dashed: true,
+            },
+        ));
+    }
+    let (a_s, b_s): (Vec<Series>, Vec<Series>) = series
+        .into_iter()
+        .flat_map(|(a, b, c, d)| [(a, c), (b, d)])
+        .unzip();
+    let _ = writeln!(
+        out,
+        "<h3>Comparison with Karis' EnvBRDFApprox (mobile, 2014)</h3>\
+         <p>Solid: this table; dashed: the analytic fit. Max |difference| over the plotted curves: \
+         A {max_a:.4}, B {max_b:.4}.</p><div class=\"row\">"
+    );
+    out.push_str(&line_plot("A = ∫(1 − Fc) f cos", "cos θv = μ", "A", &a_s));
+    out.push_str(&line_plot("B = ∫ Fc f cos", "cos θv = μ", "B", &b_s));
+    let _ = writeln!(out, "</div>");
+}
+
+/// The whole page.
+pub fn html(tables: &[ReportTable]) -> String {
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\">\
+         <title>brdfbake report</title><style>\
+         body{{font-family:sans-serif;margin:1.5em;color:#222;background:#fff}}\
+         section{{border-top:1px solid #ccc;margin-top:1.5em}}\
+         .row{{display:flex;flex-wrap:wrap;gap:1em}}\
+         svg{{background:#fff}} svg text{{font-family:sans-serif;font-size:11px;fill:#222}}\
+         </style></head><body>\n<h1>brdfbake report</h1>\n<p>brdfbake {} — {} table(s). \
+         Heatmaps show each channel over the table's axes (axis 0 to the right, axis 1 upwards; \
+         3D tables: the middle slice). Values are the baked texels.</p>\n",
+        crate::meta::VERSION,
+        tables.len()
+    );
+    for t in tables {
+        table_section(t, &mut out);
+    }
+    out.push_str("</body></html>\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Karis' fit at the published reference points (smooth, normal incidence: A + B ≈ 1).
+    #[test]
+    fn env_brdf_approx_is_karis_fit() {
+        let (a, b) = env_brdf_approx(0.0, 1.0);
+        assert!((a + b - 1.0).abs() < 0.05, "{a} {b}");
+        let (a, b) = env_brdf_approx(1.0, 0.5);
+        assert!(a > 0.0 && b >= 0.0 && a + b < 1.0);
+    }
+}
