@@ -502,3 +502,136 @@ fn verify_files_and_presets() {
         "--tolerance",
     );
 }
+
+#[test]
+fn completions_and_man_pages() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (shell, needle) in [
+        ("bash", "_brdfbake()"),
+        ("zsh", "#compdef brdfbake"),
+        ("fish", "complete -c brdfbake"),
+    ] {
+        let out = expect(&bin(d, &["completions", shell]), 0, needle);
+        for sub in ["inspect", "probe", "verify", "report"] {
+            assert!(out.contains(sub), "{shell}: {sub}");
+        }
+    }
+    expect(&bin(d, &["completions", "tcsh"]), 2, "possible values");
+    let out = expect(&bin(d, &["man"]), 0, ".TH brdfbake 1");
+    assert!(out.contains("Exit codes"), "{out}");
+    expect(&bin(d, &["man", "probe"]), 0, ".TH brdfbake-probe 1");
+    expect(
+        &bin(d, &["man", "nope"]),
+        2,
+        "unknown subcommand \"nope\" (accepted: bake, list",
+    );
+}
+
+/// The report of a tiny preset: one HTML file, no scripts or network references, one SVG
+/// heatmap per channel plus the curves; rendered in headless Chromium when installed
+/// (`.ci/run` installs it): no console errors, a non-blank screenshot.
+#[test]
+fn report_is_self_contained_and_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(d.join("tiny.json"), TINY).unwrap();
+    let o = bin(d, &["report", "tiny.json", "--out", "rep"]);
+    expect(&o, 0, "8 table(s) -> rep/index.html");
+    let html = fs::read_to_string(d.join("rep/index.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    for bad in ["<script", "http://", "https://", "<img", "<link", "@import"] {
+        let n = html.matches(bad).count();
+        // the SVG namespace is the only URL
+        let allowed = if bad == "http://" {
+            html.matches("xmlns=\"http://www.w3.org/2000/svg\"").count()
+        } else {
+            0
+        };
+        assert_eq!(n, allowed, "{bad}");
+    }
+    // 3 + 2 + 1 + 1 + 1 + 2 + 1 + 1 channel heatmaps, E/1-E/E_avg for 2 dfg + 1 albedo,
+    // E_avg of albedo-avg, Karis comparison (A, B) for the GGX dfg
+    assert_eq!(
+        html.matches("<svg").count(),
+        12 + 3 * 3 + 1 + 2,
+        "svg count"
+    );
+    for w in [
+        "cos_theta_v →",
+        "roughness →",
+        "EnvBRDFApprox",
+        "energy loss 1 − E",
+        "E_avg vs roughness",
+    ] {
+        assert!(html.contains(w), "{w}");
+    }
+    // bad input and an output that cannot be written
+    expect(&bin(d, &["report", "no-such-preset"]), 2, "unknown preset");
+    fs::write(d.join("file"), "x").unwrap();
+    let o = bin(d, &["report", "tiny.json", "--out", "file/rep"]);
+    assert_eq!(o.status.code(), Some(1), "{:?}", text(&o));
+
+    let chromium = Command::new("sh")
+        .args(["-c", "command -v chromium"])
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
+    if !chromium {
+        eprintln!("chromium not installed: the browser check is skipped (.ci/run installs it)");
+        return;
+    }
+    let profile = tempfile::tempdir().unwrap();
+    let shot = d.join("shot.png");
+    let url = format!("file://{}", d.join("rep/index.html").display());
+    let o = Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--window-size=1200,1600",
+        ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    let (_, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    for bad in ["CONSOLE", "Uncaught", "Failed to load resource", "net::ERR"] {
+        assert!(!err.contains(bad), "{bad} in chromium's log:\n{err}");
+    }
+    let img = image::open(&shot).expect("a PNG screenshot").to_rgb8();
+    let mut colours = std::collections::BTreeSet::new();
+    for p in img.pixels() {
+        colours.insert(p.0);
+    }
+    assert!(
+        colours.len() > 50,
+        "screenshot looks blank: {} colours",
+        colours.len()
+    );
+    // the DOM chromium built holds every SVG
+    let o = Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(dom.matches("<svg").count(), html.matches("<svg").count());
+}

@@ -275,7 +275,9 @@ fn karis_section(t: &ReportTable, out: &mut String) {
         out,
         "<h3>Comparison with Karis' EnvBRDFApprox (mobile, 2014)</h3>\
          <p>Solid: this table; dashed: the analytic fit. Max |difference| over the plotted curves: \
-         A {max_a:.4}, B {max_b:.4}.</p><div class=\"row\">"
+         A {max_a:.4}, B {max_b:.4}. The fit was made to Unreal's table (Schlick-Smith G with \
+         k = alpha/2, perceptual roughness); where this table's model differs, so do the curves.</p>\
+         <div class=\"row\">"
     );
     out.push_str(&line_plot("A = ∫(1 − Fc) f cos", "cos θv = μ", "A", &a_s));
     out.push_str(&line_plot("B = ∫ Fc f cos", "cos θv = μ", "B", &b_s));
@@ -311,12 +313,20 @@ pub fn html(tables: &[ReportTable]) -> String {
 mod tests {
     use super::*;
 
-    /// Karis' fit at the published reference points (smooth, normal incidence: A + B ≈ 1).
+    /// Karis' fit, against the formula evaluated by hand: smooth at normal incidence A + B ≈ 1;
+    /// fully rough, B slightly negative (a property of the fit).
     #[test]
     fn env_brdf_approx_is_karis_fit() {
         let (a, b) = env_brdf_approx(0.0, 1.0);
-        assert!((a + b - 1.0).abs() < 0.05, "{a} {b}");
+        let a004 = 2f64.powf(-9.28) + 0.0425;
+        assert!(
+            (a - (1.04 - 1.04 * a004)).abs() < 1e-15 && (b - (1.04 * a004 - 0.04)).abs() < 1e-15
+        );
+        assert!((a + b - 1.0).abs() < 1e-12, "{a} {b}");
         let (a, b) = env_brdf_approx(1.0, 0.5);
-        assert!(a > 0.0 && b >= 0.0 && a + b < 1.0);
+        assert!(
+            (a - 0.4524).abs() < 1e-12 && (b + 0.0024).abs() < 1e-12,
+            "{a} {b}"
+        );
     }
 }
