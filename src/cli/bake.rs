@@ -185,13 +185,21 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     };
     let mut all_baked = Vec::new();
     let mut all_files = Vec::new();
+    let progress = progress_bar(&a, &presets);
     for p in &presets {
-        let (baked, files) = pool
-            .install(|| bake_preset(p, &a.out, formats.as_deref()))
-            .map_err(to_err)?;
+        progress.set_message(format!("baking {}", p.name));
+        let (baked, files) = match pool.install(|| bake_preset(p, &a.out, formats.as_deref())) {
+            Ok(r) => r,
+            Err(e) => {
+                progress.finish_and_clear();
+                return Err(to_err(e));
+            }
+        };
+        progress.inc(p.tables.len() as u64);
         all_baked.extend(baked);
         all_files.extend(files);
     }
+    progress.finish_and_clear();
     write_files(&all_files).map_err(to_err)?;
     if a.json {
         let tables: Vec<serde_json::Value> = all_baked
@@ -248,6 +256,24 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// A progress bar over the tables on stderr, shown only on a terminal and when neither
+/// `--quiet` nor `--json` is given (pipelines see nothing of it).
+fn progress_bar(a: &BakeArgs, presets: &[Preset]) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    let n: usize = presets.iter().map(|p| p.tables.len()).sum();
+    if a.quiet || a.json || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let pb = indicatif::ProgressBar::new(n as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} [{elapsed}] {bar:30} {pos}/{len} tables  {msg}",
+    ) {
+        pb.set_style(style);
+    }
+    pb.enable_steady_tick(std::time::Duration::from_millis(120));
+    pb
 }
 
 /// The presets directory searched first for preset names.
