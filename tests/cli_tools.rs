@@ -635,3 +635,33 @@ fn report_is_self_contained_and_renders() {
     let dom = String::from_utf8_lossy(&o.stdout);
     assert_eq!(dom.matches("<svg").count(), html.matches("<svg").count());
 }
+
+/// A sidecar edited by hand (still a valid table) is read, and inspect and probe say that
+/// its input hash no longer matches.
+#[test]
+fn edited_sidecar_is_flagged() {
+    let dir = baked();
+    let d = dir.path();
+    let p = d.join("out/tiny/g1.json");
+    let side = fs::read_to_string(&p).unwrap();
+    let mut v: Value = serde_json::from_str(&side).unwrap();
+    v["quadrature"]["tolerance"] = serde_json::json!(1e-5);
+    fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+    let o = bin(d, &["inspect", "out/tiny/g1.exr", "--json"]);
+    let doc: Value = serde_json::from_str(&expect(&o, 0, "edited by hand")).unwrap();
+    assert_eq!(doc["input_hash_consistent"], false);
+    let o = bin(
+        d,
+        &[
+            "probe",
+            "out/tiny/g1.exr",
+            "--at",
+            "cos_theta=0.5,roughness=0.5",
+        ],
+    );
+    expect(&o, 0, "does not match the table it describes");
+    // and bake --check reports the table as stale
+    fs::write(d.join("tiny.json"), TINY).unwrap();
+    let o = bin(d, &["bake", "tiny.json", "--check"]);
+    expect(&o, 1, "tiny/g1");
+}

@@ -104,6 +104,16 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
                     format!("stale: input hash {have} differs from the preset's {want} (preset changed or brdfbake version differs)"),
                 );
             }
+            // the sidecar must still describe what its hash says (not edited since the bake)
+            if have == want {
+                match crate::readback::table_from_sidecar(&sidecar) {
+                    Ok(t2) if crate::meta::input_hash(&t2) == want => {}
+                    _ => bad(
+                        jpath.clone(),
+                        "the sidecar was modified after the bake: it no longer describes its input hash".into(),
+                    ),
+                }
+            }
             let files = sidecar.get("files");
             for key in expected_keys(t, formats.unwrap_or(&t.formats)) {
                 let name = format!("{}.{key}", t.spec.name);

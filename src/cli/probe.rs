@@ -76,22 +76,28 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         ))
     })?;
     let names: Vec<&str> = lut.axes.iter().map(|x| x.name.as_str()).collect();
+    let mut notes = Vec::new();
+    if rb.hash_matches == Some(false) {
+        notes.push(
+            "the sidecar's input_hash does not match the table it describes (edited, or written by another brdfbake version): the exact values follow the sidecar as it is now".to_string(),
+        );
+    }
     let x = parse_at(&a.at, &names)?;
     let gpu: Vec<f64> = lut.lookup(&x).iter().map(|v| v / rb.scale).collect();
     let (exact, err) = crate::readback::exact_at(&table.spec, &x, EXACT_TOLERANCE)
         .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
-    let clamped: Vec<String> = lut
-        .axes
-        .iter()
-        .zip(&x)
-        .filter(|(ax, v)| **v < ax.range[0] || **v > ax.range[1])
-        .map(|(ax, v)| {
-            format!(
-                "{}={v} lies outside the axis range [{}, {}]: the GPU clamps to the edge",
-                ax.name, ax.range[0], ax.range[1]
-            )
-        })
-        .collect();
+    notes.extend(
+        lut.axes
+            .iter()
+            .zip(&x)
+            .filter(|(ax, v)| **v < ax.range[0] || **v > ax.range[1])
+            .map(|(ax, v)| {
+                format!(
+                    "{}={v} lies outside the axis range [{}, {}]: the GPU clamps to the edge",
+                    ax.name, ax.range[0], ax.range[1]
+                )
+            }),
+    );
     if a.json {
         let ch: Vec<_> = lut
             .channels
@@ -106,7 +112,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             "at": names.iter().zip(&x).map(|(n, v)| (n.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
             "texture_coordinates": lut.axes.iter().zip(&x).map(|(ax, v)| ax.texture_coordinate(*v)).collect::<Vec<_>>(),
             "channels": ch,
-            "notes": clamped,
+            "notes": notes,
         });
         println!(
             "{}",
@@ -134,7 +140,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             gpu[c] - exact[c]
         );
     }
-    for n in clamped {
+    for n in notes {
         println!("note: {n}");
     }
     Ok(())
