@@ -602,7 +602,20 @@ pub fn exact_at(
         a.range = [v, v];
         a.convention = Convention::Centers;
     }
-    spec.validate()?;
+    // the spec's messages speak of texels and conventions; here there is one point
+    spec.validate().map_err(|e| {
+        let e = e
+            .split("; use the centers")
+            .next()
+            .unwrap_or("")
+            .split(" (use the centers")
+            .next()
+            .unwrap_or("")
+            .replace(": texel 0 is at", ": the point is at")
+            .replace("every texel needs", "the model needs")
+            .replace("a texel at cosine 0", "cosine 0");
+        format!("no exact value there: {e}")
+    })?;
     use crate::table::{albedo, dfg, local, TableKind};
     let f = match spec.kind {
         TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {

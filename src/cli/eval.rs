@@ -101,6 +101,13 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             "--alpha/--roughness must be a finite number",
         ));
     }
+    let alpha = q.to_alpha(r);
+    use crate::model::ndf::{MAX_ALPHA, MIN_ALPHA};
+    if !(MIN_ALPHA..=MAX_ALPHA).contains(&alpha) {
+        return Err(CliError::input(format!(
+            "alpha {alpha} is outside [{MIN_ALPHA:e}, {MAX_ALPHA}] (--roughness R gives alpha = R^2)"
+        )));
+    }
     let need = |v: Option<f64>, flag: &str| -> Result<f64, CliError> {
         v.filter(|x| x.is_finite()).ok_or_else(|| {
             CliError::input(format!(
@@ -233,7 +240,6 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
-    let alpha = q.to_alpha(r);
     let model = if a.quantity == EvalQuantity::Sheen {
         "charlie / ashikhmin (sheen)".to_string()
     } else {
