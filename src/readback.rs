@@ -122,6 +122,13 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 sp.display()
             ))
         })?;
+        if v.get("schema").and_then(Value::as_str) == Some(crate::preset::SCHEMA) {
+            return Err(ReadError::Input(format!(
+                "{}: is a preset ({}), not the sidecar of a baked table: bake it, or give it to `brdfbake verify`",
+                sp.display(),
+                crate::preset::SCHEMA
+            )));
+        }
         if v.get("schema").and_then(Value::as_str) != Some(meta::SCHEMA) {
             return Err(ReadError::Input(format!(
                 "{}: not a brdfbake sidecar: \"schema\" must be {:?}",

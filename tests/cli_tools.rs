@@ -201,6 +201,7 @@ fn inspect_without_sidecar_and_bad_files() {
         2,
         "not a brdfbake sidecar",
     );
+    expect(&bin(d, &["inspect", "tiny.json"]), 2, "is a preset");
     fs::write(d.join("broken.json"), "{").unwrap();
     expect(&bin(d, &["inspect", "broken.json"]), 2, "invalid JSON");
     // a sidecar edited so it describes no valid table
