@@ -238,7 +238,7 @@ pub fn normalize_breaks(mut v: Vec<f64>) -> Vec<f64> {
     v.sort_by(|a, b| a.partial_cmp(b).unwrap());
     let mut out: Vec<f64> = Vec::with_capacity(v.len());
     for x in v {
-        if out.last().map_or(true, |&p| x - p > 1e-13) {
+        if !out.last().is_some_and(|&p| x - p <= 1e-13) {
             out.push(x);
         }
     }
