@@ -291,7 +291,10 @@ mod tests {
         match write_all_atomic(&files).unwrap_err() {
             WriteError::Prepare { path, source } => {
                 assert_eq!(path, blocked);
-                assert!(source.to_string().contains("not a regular file"), "{source}");
+                assert!(
+                    source.to_string().contains("not a regular file"),
+                    "{source}"
+                );
             }
             other => panic!("unexpected error {other:?}"),
         }
