@@ -180,7 +180,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
             _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
         },
-        _ => "nested adaptive Gauss-Kronrod (G7/K15) over the half vector: phi in [0, pi] (split at pi/2, doubled by symmetry), theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) with the lobe warp u = asinh(tan theta_h / alpha); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
+        _ => "nested adaptive Gauss-Kronrod (G7/K15) over the half vector: phi in [0, pi] (split at pi/2, doubled by symmetry), theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) with the lobe warp u = asinh(tan theta_h / alpha) (V-groove masking: theta_h and phi ranges also split at the term's kinks); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
     };
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",

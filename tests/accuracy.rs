@@ -361,21 +361,11 @@ fn smooth_model_error_estimates_are_upper_bounds() {
     assert_none("library error estimates", &failures);
 }
 
-/// As above for the V-groove term, whose min() puts kinks in the integrand. FAILS (library
-/// inaccuracy, below REQ): at LIB_TOL the measured error exceeds the returned estimate at
-/// * GGX μ = 0.95 α = 0.25, A: library 0.9007092980335574, reference 0.9007091948017548,
-///   |error| 1.03e-7 > estimate 3.49e-8;
-/// * Beckmann μ = 0.95 α = 0.25, A: library 0.9978306460115718, reference
-///   0.9978306057910049, |error| 4.02e-8 > estimate 2.83e-8;
-/// * GGX μ = 1 α = 0.1, A: library 0.9826094239463533, reference 0.9826094241197302,
-///   |error| 1.73e-10 > estimate 5.94e-11.
-///
-/// It is false convergence, not a loose estimate: at GGX μ = 0.95 α = 0.25 the library
-/// converges to 0.90070929158 as the tolerance shrinks (1e-11: estimate 2.3e-12), while its
-/// own `integrate_over_l` with `LobeWarp::Linear` gives 0.900709194801753, the reference's
-/// value to 1e-15. The asinh warp (`TanOverScale(α)`) does not resolve the kinks.
+/// As above for the V-groove term, whose min() puts kinks in the integrand. This failed
+/// before the library split the θh range at the kinks (`LobeWarp::TanOverScaleVGroove`):
+/// with a kink inside a panel K15 and G7 agreed on a wrong value (GGX μ = 0.95 α = 0.25, A:
+/// |error| 1.03e-7 > estimate 3.5e-8), i.e. false convergence, not a loose estimate.
 #[test]
-#[ignore = "library inaccuracy: V-groove integrals converge falsely under the asinh lobe warp (GGX mu=0.95 alpha=0.25: error 1.03e-7 > estimate 3.5e-8)"]
 fn vgroove_error_estimates_are_upper_bounds() {
     let mut failures = estimate_violations(NdfKind::Ggx, Masking::VGroove);
     failures.extend(estimate_violations(NdfKind::Beckmann, Masking::VGroove));

@@ -42,6 +42,35 @@ pub enum LobeWarp {
     TanOverScale(f64),
     /// θh itself: for lobes that are not concentrated at the normal (sheen).
     Linear,
+    /// As `TanOverScale`, with the θh range also split where Cook–Torrance's V-groove term
+    /// `G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h))` switches branch (see
+    /// [`vgroove_kinks`]): a kink inside a Gauss–Kronrod panel makes K15 and G7 agree on a
+    /// wrong value (false convergence), a kink at a panel edge costs nothing.
+    TanOverScaleVGroove(f64),
+}
+
+/// The half-vector polar angles θh in `(0, θmax)` at which the V-groove term can switch
+/// branch, for a view with `tan ψ = tan θv cos φ` (`psi` in (−π/2, π/2)), sorted.
+///
+/// With `v = (sin θv, 0, cos θv)` and `h` at (θh, φ), `v·h = cos θh cos θv (1 + tan θh tan ψ)`.
+/// * `2(n·h)(n·v) = v·h` ⇔ `tan θh tan ψ = 1` ⇔ `θh = π/2 − ψ` (ψ > 0).
+/// * `2(n·h)(n·l) = v·h` with `n·l = 2(v·h)(n·h) − n·v` ⇔, dividing by cos³θh cos θv and
+///   writing `t = tan θh`, `s = tan ψ`: `s(t³ − 3t) + (3t² − 1) = 0` ⇔
+///   `tan 3θh = (3t − t³)/(1 − 3t²) = −1/s` ⇔ `θh = (ψ + π/2)/3` (the only root in
+///   [0, θmax] — the others are negative or beyond the horizon).
+/// * the two branches cross where `n·l = n·v` ⇔ `cos²θh (1 + tan θh tan ψ) = 1` ⇔
+///   `θh = ψ` (ψ > 0).
+///
+/// Derived here; the V-groove term itself is Cook & Torrance (1982), eq. 6 (after
+/// Torrance & Sparrow 1967).
+pub fn vgroove_kinks(psi: f64) -> Vec<f64> {
+    let th_max = std::f64::consts::FRAC_PI_4 + 0.5 * psi;
+    let mut k: Vec<f64> = [(psi + FRAC_PI_2) / 3.0, FRAC_PI_2 - psi, psi]
+        .into_iter()
+        .filter(|&t| t > 0.0 && t < th_max)
+        .collect();
+    k.sort_by(f64::total_cmp);
+    k
 }
 
 /// `tan θmax(φ)` for a view with `tan θv = tan_v`, computed without cancellation.
@@ -54,6 +83,33 @@ pub fn tan_theta_h_max(tan_v: f64, cos_phi: f64) -> f64 {
     } else {
         1.0 / (s - t)
     }
+}
+
+/// [`integrate`] over consecutive pieces `[cuts[i], cuts[i+1]]`, the tolerance shared in
+/// proportion to length (as `integrate` shares it among its own panels).
+fn integrate_pieces<const N: usize, F: FnMut(f64) -> [f64; N]>(
+    mut f: F,
+    cuts: &[f64],
+    tol: Tolerance,
+) -> Estimate<N> {
+    let (a, b) = (cuts[0], cuts[cuts.len() - 1]);
+    if cuts.len() == 2 {
+        return integrate(f, a, b, tol);
+    }
+    let mut out = Estimate::zero();
+    for w in cuts.windows(2) {
+        let share = Tolerance {
+            abs: tol.abs * (w[1] - w[0]) / (b - a),
+            ..tol
+        };
+        let e = integrate(&mut f, w[0], w[1], share);
+        for c in 0..N {
+            out.value[c] += e.value[c];
+            out.error[c] += e.error[c];
+        }
+        out.evals += e.evals;
+    }
+    out
 }
 
 /// Integrates `g(v, l) dω_l` over the upper hemisphere of `l` for a view with cosine
@@ -103,9 +159,21 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
         };
         let _ = sp;
         let est = match warp {
-            LobeWarp::TanOverScale(scale) => {
+            LobeWarp::TanOverScale(scale) | LobeWarp::TanOverScaleVGroove(scale) => {
                 let umax = (tmax / scale).asinh();
-                integrate(
+                // breakpoints in u: the V-groove kinks, if asked for
+                let mut cuts = vec![0.0];
+                if let LobeWarp::TanOverScaleVGroove(_) = warp {
+                    let psi = (tan_v * cp).atan();
+                    for th in vgroove_kinks(psi) {
+                        let u = (th.tan() / scale).asinh();
+                        if u > 0.0 && u < umax {
+                            cuts.push(u);
+                        }
+                    }
+                }
+                cuts.push(umax);
+                integrate_pieces(
                     |u: f64| {
                         let t = scale * u.sinh();
                         let c2 = 1.0 / (1.0 + t * t);
@@ -123,8 +191,7 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
                         }
                         y
                     },
-                    0.0,
-                    umax,
+                    &cuts,
                     inner_tol,
                 )
             }
@@ -155,8 +222,20 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
         est.value
     };
     let mut total = Estimate::<N>::zero();
-    for (a, b) in [(0.0, FRAC_PI_2), (FRAC_PI_2, PI)] {
-        let e = integrate(phi_integrand, a, b, outer_tol);
+    // For the V-groove term, the inner integral is not smooth in φ where a kink enters the
+    // θh range at the horizon (tan ψ = 1/√3, ψ = π/6) or two kinks meet (tan ψ = 1,
+    // ψ = π/4): split [0, π/2] there (tan ψ = tan θv cos φ falls from tan θv to 0).
+    let mut first = vec![0.0];
+    if let LobeWarp::TanOverScaleVGroove(_) = warp {
+        for t in [1.0, 1.0 / 3f64.sqrt()] {
+            if tan_v > t {
+                first.push((t / tan_v).acos());
+            }
+        }
+    }
+    first.push(FRAC_PI_2);
+    for cuts in [first, vec![FRAC_PI_2, PI]] {
+        let e = integrate_pieces(phi_integrand, &cuts, outer_tol);
         for c in 0..N {
             total.value[c] += 2.0 * e.value[c];
             total.error[c] += 2.0 * e.error[c];
@@ -193,6 +272,35 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// At each kink one of the V-groove branches equals 1 exactly (2(n·h)(n·v) = v·h or
+    /// 2(n·h)(n·l) = v·h) or the two branches are equal, to rounding (1e-13 relative: a few operations on O(1) numbers).
+    #[test]
+    fn vgroove_kinks_are_branch_switches() {
+        let mut seen = [0usize; 3];
+        for &mu in &[0.05f64, 0.3, 0.7, 0.95] {
+            for k in 0..=32 {
+                let phi = PI * k as f64 / 32.0;
+                let s = (1.0 - mu * mu).sqrt();
+                let psi = (s / mu * phi.cos()).atan();
+                for th in vgroove_kinks(psi) {
+                    let (sh, ch) = th.sin_cos();
+                    let vh = s * sh * phi.cos() + mu * ch;
+                    let nl = 2.0 * vh * ch - mu;
+                    let (gv, gl) = (2.0 * ch * mu / vh, 2.0 * ch * nl / vh);
+                    let which = [(gv - 1.0).abs(), (gl - 1.0).abs(), (gv - gl).abs()]
+                        .iter()
+                        .position(|&d| d < 1e-13);
+                    let which = which.unwrap_or_else(|| {
+                        panic!("mu={mu} phi={phi} th={th}: no branch switch, {gv} {gl}")
+                    });
+                    assert!(nl > 0.0 && th < tan_theta_h_max(s / mu, phi.cos()).atan());
+                    seen[which] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use super::fresnel::Fresnel;
 use super::masking::Masking;
 use super::ndf::Ndf;
-use crate::integrate::hemisphere::Node;
+use crate::integrate::hemisphere::{LobeWarp, Node};
 use std::f64::consts::PI;
 
 /// A microfacet specular lobe.
@@ -17,6 +17,15 @@ pub struct Specular {
 }
 
 impl Specular {
+    /// The warp the hemisphere quadrature should use for this lobe: the NDF's, with the
+    /// θh range split at the V-groove term's kinks when that is the masking term.
+    pub fn warp(&self) -> LobeWarp {
+        match (self.masking, self.ndf.warp()) {
+            (Masking::VGroove, LobeWarp::TanOverScale(s)) => LobeWarp::TanOverScaleVGroove(s),
+            (_, w) => w,
+        }
+    }
+
     /// `f(v, l)·(n·l)` at a half-vector node: `D·G·F/(4 n·v)` (the n·l cancels, which keeps
     /// the integrand finite at the horizon).
     #[inline]

@@ -33,7 +33,7 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
     let warp = brdf
         .specular
         .as_ref()
-        .map_or(LobeWarp::TanOverScale(1.0), |s| s.ndf.warp());
+        .map_or(LobeWarp::TanOverScale(1.0), |s| s.warp());
     let wd = brdf.diffuse_weight / PI;
     let e = integrate_over_l(mu, warp, tol, |n| {
         let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));

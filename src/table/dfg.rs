@@ -16,7 +16,7 @@ use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
 pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
-    let e = integrate_over_l(mu, spec.ndf.warp(), tol, |n| {
+    let e = integrate_over_l(mu, spec.warp(), tol, |n| {
         let f = spec.cosine_weighted_with(n, 1.0);
         let fc = schlick_weight(n.v_dot_h);
         [f * (1.0 - fc), f * fc]
