@@ -529,6 +529,81 @@ fn completions_and_man_pages() {
     );
 }
 
+/// `report --filament-dfg FILE`: a table in the layout Filament ships (here 4×4 RGB, all
+/// 0.5) gets its own section (a row per channel, a difference heatmap per channel); files
+/// that are not such a table are refused with exit 2 and a message naming the file, before
+/// anything is baked or written.
+#[test]
+fn report_compares_a_shipped_filament_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(d.join("tiny.json"), TINY).unwrap();
+    fs::write(
+        d.join("dfg.inc"),
+        "// cmgen\n".to_string() + &"0x3800, ".repeat(48),
+    )
+    .unwrap();
+    let o = bin(
+        d,
+        &[
+            "report",
+            "tiny.json",
+            "--filament-dfg",
+            "dfg.inc",
+            "--out",
+            "rep",
+        ],
+    );
+    expect(&o, 0, "rep/index.html");
+    let html = fs::read_to_string(d.join("rep/index.html")).unwrap();
+    assert!(html.contains("Comparison with Filament's shipped DFG table"));
+    assert!(html.contains("<code>dfg.inc</code>: 4×4, 3 channels"));
+    let start = html.find("Comparison with Filament's").unwrap();
+    let section = &html[start..start + html[start..].find("</section>").unwrap()];
+    assert_eq!(
+        section.matches("<tr><td>").count(),
+        3,
+        "one row per channel"
+    );
+    assert_eq!(
+        section.matches("<svg").count(),
+        3,
+        "one heatmap per channel"
+    );
+    for (name, body, needle) in [
+        ("five.inc", "0x3800, ".repeat(5), "5 values is neither 2·N²"),
+        (
+            "word.inc",
+            "0x3800, hello".to_string(),
+            "value 2 (\"hello\")",
+        ),
+    ] {
+        fs::write(d.join(name), body).unwrap();
+        let o = bin(
+            d,
+            &["report", "tiny.json", "--filament-dfg", name, "--out", "r2"],
+        );
+        expect(&o, 2, needle);
+        let err = text(&o).1;
+        assert!(err.contains(name), "{err}");
+    }
+    fs::write(d.join("bin.inc"), [0xffu8, 0xfe, 0x00]).unwrap();
+    expect(
+        &bin(d, &["report", "--filament-dfg", "bin.inc", "--out", "r2"]),
+        2,
+        "not a text file",
+    );
+    expect(
+        &bin(
+            d,
+            &["report", "--filament-dfg", "missing.inc", "--out", "r2"],
+        ),
+        1,
+        "missing.inc: cannot read",
+    );
+    assert!(!d.join("r2").exists(), "nothing written for refused input");
+}
+
 /// The report of a tiny preset: one HTML file, no scripts or network references, one SVG
 /// heatmap per channel plus the curves; rendered in headless Chromium when installed
 /// (`.ci/run` installs it): no console errors, a non-blank screenshot.

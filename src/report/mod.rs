@@ -3,6 +3,7 @@
 //! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
 //! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
 
+pub mod filament;
 mod svg;
 
 use crate::lut::{Lut, Quantity};
@@ -284,8 +285,62 @@ fn karis_section(t: &ReportTable, out: &mut String) {
     let _ = writeln!(out, "</div>");
 }
 
-/// The whole page.
-pub fn html(tables: &[ReportTable]) -> String {
+/// The section comparing a shipped Filament DFG table (`label`: the file's name).
+fn filament_section(label: &str, c: &filament::Comparison, out: &mut String) {
+    let names = ["R = ∫Fc f cos", "G = ∫ f cos", "B = cloth ∫ D V cos"];
+    let _ = writeln!(
+        out,
+        "<section><h2>Comparison with Filament's shipped DFG table</h2>\
+         <p>File <code>{}</code>: {n}×{n}, {} channels, f16. Exact values: GGX, \
+         height-correlated Smith, F = 1 (and Charlie/Ashikhmin cloth), computed by brdfbake at \
+         tolerance 1e-7. <b>As sampled</b>: each texel against the exact value where Filament's \
+         shader reads it (n·v = (x + 0.5)/N, perceptual roughness = (y + 0.5)/N) — what a \
+         renderer gets. <b>As computed</b>: against the exact value where cmgen computed the \
+         row (roughness min((y + 1.5)/N, 1): its row formula saturate((N − y + 0.5)/N) with \
+         the flip to GL order puts every row one texel up) — cmgen's integration error alone. \
+         f16 rounding alone accounts for up to the last column.</p>",
+        esc(label),
+        c.channels,
+        n = c.size
+    );
+    let _ = writeln!(
+        out,
+        "<table border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\">\
+         <tr><th>channel</th><th>max |Δ| as sampled</th><th>at (n·v, r)</th>\
+         <th>mean |Δ| as sampled</th><th>max |Δ| as computed</th><th>at (n·v, r)</th>\
+         <th>mean |Δ| as computed</th><th>f16 rounding</th></tr>"
+    );
+    for (ch, name) in names.iter().enumerate().take(c.channels) {
+        let (a, b) = (&c.as_sampled[ch], &c.as_computed[ch]);
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td>{:.2e}</td><td>({:.4}, {:.4})</td><td>{:.2e}</td>\
+             <td>{:.2e}</td><td>({:.4}, {:.4})</td><td>{:.2e}</td><td>{:.1e}</td></tr>",
+            name,
+            a.max_abs,
+            a.at.0,
+            a.at.1,
+            a.mean_abs,
+            b.max_abs,
+            b.at.0,
+            b.at.1,
+            b.mean_abs,
+            c.f16_floor[ch]
+        );
+    }
+    let _ = writeln!(out, "</table><div class=\"row\">");
+    for (k, ch) in c.diff.channels.iter().enumerate() {
+        out.push_str(&heatmap(
+            &c.diff,
+            k,
+            &format!("shipped − exact, as sampled — {}", ch.name),
+        ));
+    }
+    let _ = writeln!(out, "</div></section>");
+}
+
+/// The whole page; `filament`: a shipped Filament DFG table's name and its comparison.
+pub fn html(tables: &[ReportTable], filament: Option<(&str, &filament::Comparison)>) -> String {
     let mut out = String::new();
     let _ = write!(
         out,
@@ -302,6 +357,9 @@ pub fn html(tables: &[ReportTable]) -> String {
         crate::meta::VERSION,
         tables.len()
     );
+    if let Some((label, c)) = filament {
+        filament_section(label, c, &mut out);
+    }
     for t in tables {
         table_section(t, &mut out);
     }
