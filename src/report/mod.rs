@@ -3,6 +3,7 @@
 //! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
 //! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
 
+pub mod convergence;
 mod svg;
 
 use crate::lut::{Lut, Quantity};
@@ -305,6 +306,7 @@ pub fn html(tables: &[ReportTable]) -> String {
     for t in tables {
         table_section(t, &mut out);
     }
+    convergence::section(&mut out);
     out.push_str("</body></html>\n");
     out
 }
