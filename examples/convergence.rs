@@ -4,7 +4,9 @@
 //! variant), measured against the test suite's independent l-space reference integrator
 //! (`tests/common/reference.rs`, included here by path).
 //!
-//! Run: `cargo run --release --example convergence` (prints markdown on stdout).
+//! Run: `cargo run --release --example convergence` (prints markdown on stdout);
+//! `-- --html FILE` writes the report's convergence section (library reference, the
+//! report's sweep) to FILE instead, to look at the plots alone.
 
 #[path = "../tests/common/reference.rs"]
 mod reference;
@@ -55,6 +57,22 @@ fn independent_reference(kind: Kind) -> (Vec<f64>, f64) {
 }
 
 fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [flag, path] = args.as_slice() {
+        if flag == "--html" {
+            let mut page = String::from(
+                "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><style>.row{display:flex;flex-wrap:wrap;gap:1em} svg text{font-family:sans-serif;font-size:11px}</style></head><body>",
+            );
+            cv::section(&mut page);
+            page.push_str("</body></html>\n");
+            std::fs::write(path, page).expect("write the page");
+            return;
+        }
+    }
+    if !args.is_empty() {
+        eprintln!("usage: convergence [--html FILE]");
+        std::process::exit(2);
+    }
     let tols = [
         1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12,
     ];
