@@ -627,10 +627,11 @@ fn report_is_self_contained_and_renders() {
         assert_eq!(n, allowed, "{bad}");
     }
     // 3 + 2 + 1 + 1 + 1 + 2 + 1 + 1 channel heatmaps, E/1-E/E_avg for 2 dfg + 1 albedo,
-    // E_avg of albedo-avg, Karis comparison (A, B) for the GGX dfg
+    // E_avg of albedo-avg, Karis comparison (A, B) for the GGX dfg, and the convergence
+    // section's log-log plot per integral kind (report::convergence::KINDS)
     assert_eq!(
         html.matches("<svg").count(),
-        12 + 3 * 3 + 1 + 2,
+        12 + 3 * 3 + 1 + 2 + brdfbake::report::convergence::KINDS.len(),
         "svg count"
     );
     for w in [
@@ -639,6 +640,7 @@ fn report_is_self_contained_and_renders() {
         "EnvBRDFApprox",
         "energy loss 1 − E",
         "E_avg vs roughness",
+        "Convergence: adaptive Gauss–Kronrod vs Monte Carlo",
     ] {
         assert!(html.contains(w), "{w}");
     }

@@ -3,6 +3,7 @@
 //! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
 //! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
 
+pub mod convergence;
 pub mod filament;
 mod svg;
 
@@ -363,6 +364,7 @@ pub fn html(tables: &[ReportTable], filament: Option<(&str, &filament::Compariso
     for t in tables {
         table_section(t, &mut out);
     }
+    convergence::section(&mut out);
     out.push_str("</body></html>\n");
     out
 }
