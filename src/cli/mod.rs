@@ -5,6 +5,7 @@ mod bake;
 mod completions;
 mod eval;
 mod inspect;
+mod laws;
 mod list;
 mod probe;
 mod report;
@@ -48,6 +49,8 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Write a self-contained HTML report (heatmaps, E curves, Karis' approximation) of presets.
     Report(report::ReportArgs),
+    /// Measure the two laws (reciprocity, energy conservation) of models or a MERL file.
+    Laws(laws::LawsArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(completions::CompletionsArgs),
     /// Print the man page (roff), of brdfbake or of one subcommand.
@@ -94,6 +97,7 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Command::Eval(a) => eval::run(a),
         Command::Verify(a) => verify::run(a),
         Command::Report(a) => report::run(a),
+        Command::Laws(a) => laws::run(a),
         Command::Completions(a) => completions::run(a),
         Command::Man(a) => completions::run_man(a),
     };
