@@ -54,7 +54,9 @@ fn rot_z(w: Dir, (s, c): (f64, f64)) -> Dir {
 
 /// `∫ f(ωi, ωo) cos θo dωo` for ωi at polar angle `theta_i` ∈ [0, π/2) and azimuth `phi_i`,
 /// to the absolute tolerance `tol` (estimated); see the module documentation.
+/// The tolerance is raised to the model's [`Reflectance::tolerance_floor`].
 pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f64) -> Albedo {
+    let tol = tol.max(m.tolerance_floor());
     let mu = theta_i.cos().clamp(0.0, 1.0);
     if mu <= 0.0 {
         return Albedo {
@@ -76,7 +78,7 @@ pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f6
         abs: inner_abs,
         initial_panels: 4,
         max_depth: 40,
-        max_evals: 200_000,
+        max_evals: 50_000,
         ..Default::default()
     };
     let outer = Tolerance {
@@ -84,7 +86,7 @@ pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f6
         initial_panels: 8,
         max_depth: 40,
         noise_floor: 2.0 * inner_abs,
-        max_evals: 40_000,
+        max_evals: 10_000,
     };
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);

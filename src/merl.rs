@@ -32,6 +32,10 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 use std::sync::Arc;
 
+/// Smallest albedo quadrature tolerance used on measured data (see
+/// [`Reflectance::tolerance_floor`]).
+pub const MEASURED_TOLERANCE_FLOOR: f64 = 1e-3;
+
 /// θh, θd, φd resolutions.
 pub const DIMS: [usize; 3] = [90, 90, 180];
 /// Entries per channel.
@@ -337,6 +341,11 @@ impl Reflectance for MerlChannel {
         // resolved by the data, 0.05 is a good warp for everything the grid can hold
         0.05
     }
+    fn tolerance_floor(&self) -> f64 {
+        // the interpolant has ~10⁶ kinks (grid lines); its own error against a smooth
+        // BRDF is of order 1e-3..1e-2 in albedo (tests/merl.rs measures it)
+        MEASURED_TOLERANCE_FLOOR
+    }
 }
 
 /// A GGX + Lambert fit of one channel:
@@ -543,4 +552,40 @@ pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
         max_abs,
         nodes: nodes.len(),
     })
+}
+
+/// One row of a measured albedo table: E(μ) per channel.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct AlbedoRow {
+    pub mu: f64,
+    pub albedo: [f64; 3],
+    pub error: [f64; 3],
+}
+
+/// Directional albedo `E(μ) = ∫ f(ωi, ωo) cos θo dωo` per channel at `n` cosines μ at
+/// texel centres (μ = (i + 0.5)/n), by [`crate::laws::directional_albedo`] of the
+/// interpolated data (see the module documentation for unmeasured entries) to `tol`.
+pub fn albedo_table(m: &Arc<Merl>, n: usize, tol: f64) -> Vec<AlbedoRow> {
+    (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let mu = (i as f64 + 0.5) / n as f64;
+            let mut row = AlbedoRow {
+                mu,
+                albedo: [0.0; 3],
+                error: [0.0; 3],
+            };
+            for c in 0..3 {
+                let ch = MerlChannel {
+                    merl: m.clone(),
+                    channel: c,
+                    label: String::new(),
+                };
+                let a = crate::laws::directional_albedo(&ch, mu.acos(), 0.0, tol);
+                row.albedo[c] = a.value;
+                row.error[c] = a.error;
+            }
+            row
+        })
+        .collect()
 }

@@ -57,6 +57,12 @@ pub trait Reflectance: Sync {
     fn lobe_width(&self) -> f64 {
         1.0
     }
+    /// Smallest albedo quadrature tolerance worth asking for (0: any). Tabulated data are a
+    /// piecewise-multilinear interpolant whose own error is far above 1e-6; asking the
+    /// adaptive quadrature for more only makes it bisect around every kink.
+    fn tolerance_floor(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Width in tan θh of a `cos^n` lobe (Beckmann-equivalent α = √(2/(n+2)), Walter et al.
