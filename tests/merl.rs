@@ -328,6 +328,16 @@ fn cli_on_files() {
     let fit = &v["fit"]["channels"][1]["fit"];
     assert!((fit["alpha"].as_f64().unwrap() - 0.35).abs() < 1e-6);
     assert_eq!(v["albedo"]["rows"].as_array().unwrap().len(), 4);
+    // deterministic: the same bytes on 1 and 2 threads
+    let run_t = |t: &str| {
+        Command::new(env!("CARGO_BIN_EXE_brdfbake"))
+            .args(["measured", g, "--albedo-size", "4", "--json"])
+            .env("RAYON_NUM_THREADS", t)
+            .output()
+            .unwrap()
+            .stdout
+    };
+    assert_eq!(run_t("1"), run_t("2"));
     let o = brdfbake(&["laws", &format!("merl:{g}"), "--json"]);
     assert_eq!(
         o.status.code(),
