@@ -32,9 +32,52 @@ pub struct LawsArgs {
     /// Exit 1 if this law fails for any model (default: report only, exit 0).
     #[arg(long, value_enum)]
     pub check: Option<CheckLaw>,
+    /// Also tabulate E(mu) at N cosines (texel centres (i + 0.5)/N) for every incoming
+    /// azimuth measured (one column per azimuth for anisotropic models) and averaged over
+    /// the azimuth.
+    #[arg(long, value_name = "N")]
+    pub albedo_table: Option<usize>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// One row of `--albedo-table`: E at the measured azimuths and averaged over φi.
+#[derive(serde::Serialize)]
+struct TableRow {
+    mu: f64,
+    /// E at each azimuth of [`crate::laws::incoming_phis_deg`].
+    albedo: Vec<f64>,
+    /// E averaged over φi ([`crate::laws::azimuth_averaged_albedo`]).
+    azimuth_average: f64,
+    /// Largest error estimate of the row.
+    error: f64,
+}
+
+fn albedo_table(m: &dyn Reflectance, n: usize, tol: f64) -> Vec<TableRow> {
+    let phis = crate::laws::incoming_phis_deg(m.isotropic());
+    (0..n)
+        .map(|i| {
+            let mu = (i as f64 + 0.5) / n as f64;
+            let t = mu.acos();
+            let mut err = 0.0f64;
+            let albedo = phis
+                .iter()
+                .map(|p| {
+                    let a = crate::laws::directional_albedo(m, t, p.to_radians(), tol);
+                    err = err.max(a.error);
+                    a.value
+                })
+                .collect();
+            let avg = crate::laws::azimuth_averaged_albedo(m, t, tol);
+            TableRow {
+                mu,
+                albedo,
+                azimuth_average: avg.value,
+                error: err.max(avg.error),
+            }
+        })
+        .collect()
 }
 
 /// Every model name and its keys (with defaults), for `--help` and error messages.
@@ -358,6 +401,13 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
             a.tolerance
         )));
     }
+    if let Some(n) = a.albedo_table {
+        if !(1..=256).contains(&n) {
+            return Err(CliError::input(format!(
+                "--albedo-table must be in [1, 256], got {n}"
+            )));
+        }
+    }
     // parse everything first: a bad argument anywhere is reported before any work
     let mut models = Vec::new();
     for spec in &a.models {
@@ -374,6 +424,9 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
             Some(CheckLaw::Both) => !r.holds || !e.holds,
             None => false,
         };
+        let table = a
+            .albedo_table
+            .map(|n| albedo_table(m.as_ref(), n, a.tolerance));
         if a.json {
             docs.push(json!({
                 "model": m.label(),
@@ -398,9 +451,33 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
                     "albedo": e.albedo,
                     "tolerance": a.tolerance,
                 },
+                "albedo_table": table.as_ref().map(|t| json!({
+                    "mu": "texel centres (i + 0.5)/N",
+                    "phi_i_deg": crate::laws::incoming_phis_deg(m.isotropic()),
+                    "rows": t,
+                })),
             }));
         } else {
             println!("{}", text(m.as_ref(), &r, &e));
+            if let Some(t) = &table {
+                let phis = crate::laws::incoming_phis_deg(m.isotropic());
+                let head: Vec<String> = phis.iter().map(|p| format!("phi {p}")).collect();
+                println!(
+                    "  E(mu): mu | {} | average over phi (+- error)",
+                    head.join(" | ")
+                );
+                for r in t {
+                    let cols: Vec<String> = r.albedo.iter().map(|x| format!("{x:.6}")).collect();
+                    println!(
+                        "    {:.5} | {} | {:.6} (+- {:.1e})",
+                        r.mu,
+                        cols.join(" | "),
+                        r.azimuth_average,
+                        r.error
+                    );
+                }
+                println!();
+            }
         }
     }
     if a.json {
