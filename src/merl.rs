@@ -363,6 +363,9 @@ pub struct Fit {
     pub max_abs: f64,
     /// Nodes used.
     pub nodes: usize,
+    /// Whether α ended at an end of [`FIT_ALPHA_RANGE`] (the data want a value outside it,
+    /// or a shape the model cannot take: the fit is then only the best within the range).
+    pub alpha_at_limit: bool,
 }
 
 /// A node used by the fit: geometry and measured value.
@@ -551,6 +554,8 @@ pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
         },
         max_abs,
         nodes: nodes.len(),
+        alpha_at_limit: (alpha / FIT_ALPHA_RANGE[0] - 1.0).abs() < 1e-6
+            || (alpha / FIT_ALPHA_RANGE[1] - 1.0).abs() < 1e-6,
     })
 }
 

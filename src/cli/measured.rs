@@ -97,8 +97,15 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
     for (f, n) in fits.iter().zip(names) {
         match f {
             Some(f) => println!(
-                "  fit {n}: GGX + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
-                f.kd, f.f0, f.alpha, f.rms, f.rel_rms, f.max_abs, f.nodes
+                "  fit {n}: GGX + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
+                f.kd,
+                f.f0,
+                f.alpha,
+                if f.alpha_at_limit { " (at the end of the searched range)" } else { "" },
+                f.rms,
+                f.rel_rms,
+                f.max_abs,
+                f.nodes
             ),
             None => println!("  fit {n}: no measured node"),
         }
