@@ -31,7 +31,9 @@
 pub mod cli;
 pub mod encode;
 pub mod integrate;
+pub mod laws;
 pub mod lut;
+pub mod merl;
 pub mod meta;
 pub mod model;
 pub mod pipeline;

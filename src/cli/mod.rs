@@ -5,7 +5,9 @@ mod bake;
 mod completions;
 mod eval;
 mod inspect;
+mod laws;
 mod list;
+mod measured;
 mod probe;
 mod report;
 mod verify;
@@ -48,6 +50,10 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Write a self-contained HTML report (heatmaps, E curves, Karis' approximation) of presets.
     Report(report::ReportArgs),
+    /// Measure the two laws (reciprocity, energy conservation) of models or a MERL file.
+    Laws(laws::LawsArgs),
+    /// A measured BRDF (MERL file): unmeasured entries, albedo per channel, GGX + Lambert fit.
+    Measured(measured::MeasuredArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(completions::CompletionsArgs),
     /// Print the man page (roff), of brdfbake or of one subcommand.
@@ -94,6 +100,8 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Command::Eval(a) => eval::run(a),
         Command::Verify(a) => verify::run(a),
         Command::Report(a) => report::run(a),
+        Command::Laws(a) => laws::run(a),
+        Command::Measured(a) => measured::run(a),
         Command::Completions(a) => completions::run(a),
         Command::Man(a) => completions::run_man(a),
     };

@@ -2,6 +2,7 @@
 //! its source. Nothing here knows about tables or files.
 
 pub mod brdf;
+pub mod classic;
 pub mod fresnel;
 pub mod masking;
 pub mod ndf;

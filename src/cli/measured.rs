@@ -1,0 +1,114 @@
+//! `brdfbake measured FILE`: a measured BRDF (MERL binary format): what the file holds,
+//! its directional albedo per channel, and a GGX + Lambert fit per channel with its error.
+
+use super::CliError;
+use crate::merl::{albedo_table, fit_ggx_lambert, Merl};
+use serde_json::json;
+use std::sync::Arc;
+
+#[derive(clap::Args, Debug)]
+pub struct MeasuredArgs {
+    /// A MERL .binary file (90x90x180 half/difference-angle table, R G B f64).
+    pub file: std::path::PathBuf,
+    /// Number of cos(theta_i) values of the albedo table (at texel centres).
+    #[arg(long, default_value_t = 16)]
+    pub albedo_size: usize,
+    /// Quadrature tolerance of each albedo (estimated absolute error; at least 1e-3 is
+    /// used on measured data, see `merl::MEASURED_TOLERANCE_FLOOR`).
+    #[arg(long, default_value_t = 1e-3)]
+    pub tolerance: f64,
+    /// Skip the GGX + Lambert fit.
+    #[arg(long)]
+    pub no_fit: bool,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Node strides (theta_d, phi_d) of the fit: every theta_h node, every 3rd theta_d and
+/// every 6th phi_d node (~40k nodes above the horizon).
+pub const FIT_STRIDE: [usize; 2] = [3, 6];
+
+pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
+    if !(1..=1024).contains(&a.albedo_size) {
+        return Err(CliError::input(format!(
+            "--albedo-size must be in [1, 1024], got {}",
+            a.albedo_size
+        )));
+    }
+    if !(a.tolerance.is_finite() && a.tolerance > 0.0 && a.tolerance <= 1e-2) {
+        return Err(CliError::input(format!(
+            "--tolerance must be in (0, 0.01], got {}",
+            a.tolerance
+        )));
+    }
+    let m = Merl::read(&a.file).map_err(|e| CliError {
+        code: e.exit_code(),
+        msg: e.to_string(),
+    })?;
+    let m = Arc::new(m);
+    let table = albedo_table(&m, a.albedo_size, a.tolerance);
+    let fits: Vec<_> = if a.no_fit {
+        Vec::new()
+    } else {
+        (0..3).map(|c| fit_ggx_lambert(&m, c, FIT_STRIDE)).collect()
+    };
+    let names = ["R", "G", "B"];
+    if a.json {
+        let doc = json!({
+            "schema": "brdfbake.measured/1",
+            "file": a.file.display().to_string(),
+            "format": "MERL BRDF (Matusik et al. 2003): int32 90 90 180, R G B f64, scales 1/1500 1.15/1500 1.66/1500",
+            "unmeasured": m.unmeasured,
+            "unmeasured_above_horizon": m.unmeasured_above_horizon,
+            "unmeasured_policy": "interpolation corners that are unmeasured are left out and the weights renormalized; where all are unmeasured f = 0",
+            "albedo": {"mu": "texel centres (i + 0.5)/n", "tolerance": a.tolerance, "rows": table},
+            "fit": {
+                "model": "kd/pi + D_GGX(alpha) G2_smith_height_correlated F_schlick(f0) / (4 cos_i cos_o)",
+                "weights": "cos_i cos_o, nodes above the horizon, measured only",
+                "stride_theta_d_phi_d": FIT_STRIDE,
+                "channels": fits.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
+            },
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).map_err(|e| CliError::env(e.to_string()))?
+        );
+        return Ok(());
+    }
+    println!("{}", a.file.display());
+    for (c, name) in names.iter().enumerate() {
+        println!(
+            "  {name}: {} unmeasured entries ({} of them above the horizon)",
+            m.unmeasured[c], m.unmeasured_above_horizon[c]
+        );
+    }
+    println!("  directional albedo E(mu), R G B (+- error):");
+    for r in &table {
+        println!(
+            "    mu {:.5}: {:.6} {:.6} {:.6}  (+- {:.1e})",
+            r.mu,
+            r.albedo[0],
+            r.albedo[1],
+            r.albedo[2],
+            r.error.iter().cloned().fold(0.0, f64::max)
+        );
+    }
+    for (f, n) in fits.iter().zip(names) {
+        match f {
+            Some(f) => println!(
+                "  fit {n}: GGX + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
+                f.kd,
+                f.f0,
+                f.alpha,
+                if f.alpha_at_limit { " (at the end of the searched range)" } else { "" },
+                f.rms,
+                f.rel_rms,
+                f.max_abs,
+                f.nodes
+            ),
+            None => println!("  fit {n}: no measured node"),
+        }
+    }
+    Ok(())
+}
