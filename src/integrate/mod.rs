@@ -6,5 +6,6 @@ pub mod adaptive;
 pub mod chebyshev;
 pub mod gauss;
 pub mod hemisphere;
+pub mod tensor;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};
