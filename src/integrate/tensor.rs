@@ -40,11 +40,11 @@ use super::adaptive::Estimate;
 use super::hemisphere::{tan_theta_h_max, LobeWarp, Node};
 use crate::model::{Ndf, NdfKind};
 use std::cell::RefCell;
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use std::sync::OnceLock;
 
 /// What the fast path does, as the sidecar's `quadrature.method` states it.
-pub const METHOD: &str = "nested Clenshaw-Curtis tensor rule over the half vector (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes), refined one dimension at a time: phi in [0, pi] (doubled by symmetry) as phi = pi/2 + c sinh(s), c = min(cot theta_v, 1); theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) in the lobe warp u = asinh(tan theta_h / alpha) (sheen: cos theta_h = sqrt(alpha) sinh(y) for alpha < 1/16, theta_h = theta_max w^2 otherwise); error estimate per channel and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)) from the nested lower-order rules, summed over the two dimensions; a texel whose estimate does not reach the tolerance within 65x65 nodes is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2, same horizon and warp, estimate |K15 - G7| summed over panels); f64 accumulation";
+pub const METHOD: &str = "nested Clenshaw-Curtis tensor rule over the half vector (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes), refined one dimension at a time: phi in [0, pi] (doubled by symmetry) as phi = pi/2 + c sinh(s), c = min(cot theta_v, 1); theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) in the lobe warp u = asinh(tan theta_h / alpha) (sheen: cos theta_h = sqrt(alpha) sinh(y) for alpha < 1/16, theta_h = theta_max w^2 otherwise); error estimate per channel and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)) from the nested lower-order rules, summed over the two dimensions; a texel whose estimate does not reach the tolerance within 65x65 nodes, or whose very narrow sheen lobe (alpha < 1e-4) has D > 1e-12 D_max at the horizon, is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2, same horizon and warp, estimate |K15 - G7| summed over panels); f64 accumulation";
 
 /// Finest level per dimension: 2^7 + 1 = 129 nodes.
 pub const MAX_LEVEL: usize = 7;
@@ -258,11 +258,26 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
             }
             InnerWarp::SquareRoot => {
                 let thmax = tmax.atan();
-                sc.scale[i] = 0.5 * dphi_ds;
+                // Near the horizon n·l ≈ 2A(θmax − θh), A = √(cos²θv + sin²θv cos²φ)
+                // (module docs of `hemisphere`), and the Ashikhmin visibility
+                // n·l/(n·l + n·v − (n·l)(n·v)) turns over at n·l ~ n·v: a layer of width
+                // ℓ = n·v/(2A) in θh. Where it is narrow, w = 1 − d·sinh z (d = ℓ/(2θmax))
+                // puts nodes into it; θh = θmax·w² still vanishes quadratically at the normal.
+                let amp = (mu_v * mu_v + sin_v * sin_v * cp * cp).sqrt();
+                let d = mu_v / (2.0 * amp) / (2.0 * thmax);
+                let zmax = if d < 0.25 { (1.0 / d).asinh() } else { 0.0 };
+                sc.scale[i] = 0.5 * dphi_ds * if zmax > 0.0 { zmax } else { 1.0 };
                 let mut j = 0;
                 while j < NMAX {
                     if old_stride == 0 || j % old_stride != 0 {
-                        let w = 0.5 * (1.0 - r.x[j]);
+                        let x = 0.5 * (1.0 - r.x[j]);
+                        // w and dw/dx
+                        let (w, dw) = if zmax > 0.0 {
+                            let z = zmax * x;
+                            ((1.0 - d * z.sinh()).max(0.0), d * z.cosh())
+                        } else {
+                            (x, 1.0)
+                        };
                         let th = thmax * w * w;
                         let (sin_h, cos_h) = th.sin_cos();
                         let n = node_at(sin_h, cos_h);
@@ -270,8 +285,8 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
                         if n.n_dot_l <= 0.0 || n.v_dot_h <= 0.0 {
                             out.fill(0.0);
                         } else {
-                            // dω_h = sin θh dθh dφ, dθh/dw = 2 θmax w
-                            let jac = 4.0 * n.v_dot_h * sin_h * 2.0 * thmax * w;
+                            // dω_h = sin θh dθh dφ, |dθh/dw| = 2 θmax w
+                            let jac = 4.0 * n.v_dot_h * sin_h * 2.0 * thmax * w * dw;
                             let y = g(&n);
                             for k in 0..N {
                                 out[k] = y[k] * jac;
@@ -427,6 +442,20 @@ pub fn integrate_over_l_smooth<const N: usize, F: Fn(&Node) -> [f64; N]>(
         Some(n) => (InnerWarp::for_ndf(n), n.warp()),
         None => (InnerWarp::TanOverScale(1.0), LobeWarp::TanOverScale(1.0)),
     };
+    if let InnerWarp::CosOverScale(beta) = inner {
+        // A very narrow sheen lobe (α = β² < 1e-4: D ∝ (1 − cos²θh)^{1/(2α)}) that still
+        // has weight at the horizon, whose lowest point is cos θmax(φ = 0) = sin(π/4 − θv/2),
+        // is a spike of width ~α/cos θmax pressed against the n·l = 0 edge: nested fixed
+        // rules can agree on it falsely (seen at μ = 0.01, α = 1e-6), so such texels go to
+        // the adaptive integrator directly.
+        let alpha = beta * beta;
+        let theta_v = n_dot_v.clamp(0.0, 1.0).acos();
+        let cmin = (FRAC_PI_4 - 0.5 * theta_v).sin();
+        let d_rel = ((1.0 - cmin * cmin).ln() / (2.0 * alpha)).exp();
+        if alpha < 1e-4 && d_rel > 1e-12 {
+            return super::hemisphere::integrate_over_l(n_dot_v, lobe, tol_abs, g);
+        }
+    }
     match SCRATCH.with(|s| run(&mut s.borrow_mut(), n_dot_v, inner, tol_abs, &g)) {
         Ok(e) => e,
         Err(spent) => {
