@@ -7,6 +7,7 @@
 //! * each comparison also requires |fast − adaptive| ≤ est_fast + est_adaptive (+ f32
 //!   rounding for baked values): both estimates claim to bound their own errors, so their
 //!   sum bounds the difference; a failure means one of them is optimistic.
+//!
 //! The adaptive integrator's own accuracy against an independent reference is checked in
 //! tests/accuracy.rs (which, through `split_sum`, `sheen_albedo` and `directional_albedo`,
 //! now also checks the fast path against that reference).
