@@ -2,6 +2,7 @@
 //! `docs/metadata.md`): everything an engine needs to sample the texture without guessing.
 
 use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::model::Masking;
 use crate::preset::PresetTable;
 use crate::table::{DfgLayout, Storage, TableKind, TableSpec};
 use serde_json::{json, Value};
@@ -180,8 +181,27 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
             _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
         },
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::Dfg
+            if spec.model.masking != Masking::VGroove || spec.model.ndf.is_none() =>
+        {
+            let outer = if spec.kind == TableKind::AlbedoAvg {
+                "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. "
+            } else {
+                ""
+            };
+            format!("{outer}{}", crate::integrate::tensor::METHOD)
+        }
         _ => "nested adaptive Gauss-Kronrod (G7/K15) over the half vector: phi in [0, pi] (split at pi/2, doubled by symmetry), theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) with the lobe warp u = asinh(tan theta_h / alpha) (V-groove masking: theta_h and phi ranges also split at the term's kinks); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
     };
+    let method =
+        if spec.kind == TableKind::Dfg && spec.cloth && spec.model.masking == Masking::VGroove {
+            format!(
+                "{method}. Cloth channel B: {}",
+                crate::integrate::tensor::METHOD
+            )
+        } else {
+            method
+        };
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
         if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }

@@ -7,5 +7,6 @@ pub mod chebyshev;
 pub mod gauss;
 pub mod hemisphere;
 pub mod monte_carlo;
+pub mod tensor;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};

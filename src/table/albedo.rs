@@ -4,8 +4,9 @@
 
 use super::{TableKind, TableSpec, TexelResult};
 use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
+use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::{integrate, Tolerance};
-use crate::model::Brdf;
+use crate::model::{Brdf, Masking};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -29,7 +30,27 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
 }
 
 /// E(μ) for one BRDF, to absolute tolerance `tol`. Returns [value], [error], evaluations.
+///
+/// Smooth models use the fast tensor rule ([`integrate_over_l_smooth`], falling back to the
+/// adaptive integrator per texel); the V-groove term's kinks go to the adaptive one directly.
 pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
+    let kinked = brdf
+        .specular
+        .as_ref()
+        .is_some_and(|s| s.masking == Masking::VGroove);
+    if kinked {
+        return directional_albedo_adaptive(brdf, mu, tol);
+    }
+    let wd = brdf.diffuse_weight / PI;
+    let e = integrate_over_l_smooth(mu, brdf.specular.as_ref().map(|s| &s.ndf), tol, |n| {
+        let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));
+        [s + wd * n.n_dot_l]
+    });
+    (e.value, e.error, e.evals)
+}
+
+/// [`directional_albedo`] by the adaptive integrator alone.
+pub fn directional_albedo_adaptive(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
     let warp = brdf
         .specular
         .as_ref()

@@ -9,13 +9,33 @@
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
-use crate::integrate::hemisphere::integrate_over_l;
+use crate::integrate::hemisphere::{integrate_over_l, Node};
+use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
+///
+/// Smooth maskings use the fast tensor rule ([`integrate_over_l_smooth`], falling back to the
+/// adaptive integrator per texel); the V-groove term's kinks go to the adaptive one directly.
 pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
+    let g = |n: &Node| {
+        let f = spec.cosine_weighted_with(n, 1.0);
+        let fc = schlick_weight(n.v_dot_h);
+        [f * (1.0 - fc), f * fc]
+    };
+    let e = if spec.masking == Masking::VGroove {
+        integrate_over_l(mu, spec.warp(), tol, g)
+    } else {
+        integrate_over_l_smooth(mu, Some(&spec.ndf), tol, g)
+    };
+    (e.value, e.error, e.evals)
+}
+
+/// [`split_sum`] by the adaptive integrator alone (the reference the fast path is tested
+/// against).
+pub fn split_sum_adaptive(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
     let e = integrate_over_l(mu, spec.warp(), tol, |n| {
         let f = spec.cosine_weighted_with(n, 1.0);
         let fc = schlick_weight(n.v_dot_h);
@@ -26,6 +46,17 @@ pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64
 
 /// The sheen albedo ∫ D_Charlie(α)·V_Ashikhmin·(n·l) dω_l at one (μ, α).
 pub fn sheen_albedo(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
+    let sheen = Specular {
+        ndf: Ndf::new(NdfKind::Charlie, alpha).expect("alpha validated > 0"),
+        masking: Masking::Ashikhmin,
+        fresnel: Fresnel::None,
+    };
+    let e = integrate_over_l_smooth(mu, Some(&sheen.ndf), tol, |n| [sheen.cosine_weighted(n)]);
+    (e.value[0], e.error[0], e.evals)
+}
+
+/// [`sheen_albedo`] by the adaptive integrator alone.
+pub fn sheen_albedo_adaptive(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
     let sheen = Specular {
         ndf: Ndf::new(NdfKind::Charlie, alpha).expect("alpha validated > 0"),
         masking: Masking::Ashikhmin,
