@@ -293,6 +293,8 @@ fn parse_axis_attribute(s: &str) -> Option<Axis> {
     }
     let quantity = if w[1] == "cosine" {
         Quantity::Cosine
+    } else if let Some(q) = w[1].strip_prefix("fresnel:") {
+        Quantity::Fresnel(crate::model::FresnelQuantity::from_name(q)?)
     } else {
         let q = w[1].strip_prefix("roughness:")?;
         Quantity::Roughness(serde_json::from_value::<RoughnessQuantity>(json!(q)).ok()?)
@@ -630,6 +632,9 @@ pub fn exact_at(
         }
         TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(&spec),
         TableKind::Dfg => dfg::texel_fn(&spec),
+        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            crate::table::energy::texel_fn(&spec)
+        }
     };
     let r = f([0, 0, 0]);
     Ok((r.value, r.error))
