@@ -415,3 +415,118 @@ fn dielectric_btdf_energy_and_smooth_limit() {
         }
     }
 }
+
+/// `sheen-charlie`'s table kind and model (albedo of Charlie + Ashikhmin, perceptual
+/// roughness) against the reference, at r ∈ [0.1, 1] like the preset.
+#[test]
+fn sheen_albedo_matches_reference() {
+    let mut s = spec(
+        TableKind::Albedo,
+        Masking::Ashikhmin,
+        Fresnel::None,
+        vec![
+            mu_axis(4),
+            axis(
+                "roughness",
+                Quantity::Roughness(RoughnessQuantity::Perceptual),
+                3,
+                [0.1, 1.0],
+                Convention::Endpoints,
+            ),
+        ],
+    );
+    s.model.ndf = Some(NdfKind::Charlie);
+    let lut = bake(&s).unwrap();
+    for j in 0..3 {
+        let m = RefModel::new(
+            NdfKind::Charlie,
+            s.axes[1].alpha(j).unwrap(),
+            Masking::Ashikhmin,
+        );
+        for i in 0..4 {
+            let e = lut.texel([i, j, 0], 0) as f64;
+            let r = reference::albedo(&m, s.axes[0].coord(i), REF_TOL);
+            assert!(
+                (e - r.value[0]).abs() <= bound(&lut, 0, e) + r.error,
+                "{i} {j}: {e} vs {}",
+                r.value[0]
+            );
+        }
+    }
+}
+
+/// Bad Fresnel axes are input errors naming the field and what is accepted.
+#[test]
+fn fresnel_axis_errors_name_the_field() {
+    let preset = |kind: &str, model: &str, fresnel: &str| {
+        format!(
+            r#"{{"schema": "brdfbake.preset/1", "tables": [{{"name": "t", "kind": "{kind}",
+              "model": {model},
+              "axes": {{"cos_theta_v": {{"size": 2}}, "roughness": {{"size": 2, "quantity": "alpha"}},
+                        "fresnel": {fresnel}}}}}]}}"#
+        )
+    };
+    let ggx = r#"{"ndf": "ggx", "masking": "smith-separable"}"#;
+    let cases = [
+        (
+            preset("albedo-fresnel", ggx, r#"{"size": 2}"#),
+            vec!["tables[0].axes.fresnel.quantity", "is required", "sqrt-f0"],
+        ),
+        (
+            preset(
+                "albedo-fresnel",
+                ggx,
+                r#"{"size": 2, "quantity": "perceptual"}"#,
+            ),
+            vec!["tables[0].axes.fresnel.quantity", "is required"],
+        ),
+        (
+            preset(
+                "albedo-fresnel",
+                ggx,
+                r#"{"size": 2, "quantity": "eta", "range": [0.5, 0.9]}"#,
+            ),
+            vec!["tables[0]", "eta >= 1", "dielectric-btdf"],
+        ),
+        (
+            preset(
+                "dielectric-btdf",
+                ggx,
+                r#"{"size": 2, "quantity": "sqrt-f0"}"#,
+            ),
+            vec!["tables[0]", "eta or eta-reflectance"],
+        ),
+        (
+            preset(
+                "dielectric-btdf",
+                r#"{"ndf": "ggx", "masking": "smith-height-correlated"}"#,
+                r#"{"size": 2, "quantity": "eta", "range": [1.1, 2]}"#,
+            ),
+            vec!["tables[0]", "smith-separable"],
+        ),
+        (
+            preset(
+                "albedo-fresnel",
+                ggx,
+                r#"{"size": 2, "quantity": "eta-reflectance", "range": [0.5, 1], "convention": "endpoints"}"#,
+            ),
+            vec!["axes.fresnel", "eta must be in [0.01, 100]"],
+        ),
+        (
+            preset("albedo-fresnel", ggx, r#"{"size": 2, "quantity": "f00"}"#),
+            vec![
+                "tables[0].axes.fresnel.quantity",
+                "unknown quantity",
+                "eta-reflectance",
+            ],
+        ),
+    ];
+    for (text, want) in cases {
+        let e = brdfbake::preset::parse(&text, "t", "t")
+            .unwrap_err()
+            .to_string();
+        for w in want {
+            assert!(e.contains(w), "{w:?} not in {e}");
+        }
+    }
+}
