@@ -155,6 +155,8 @@ fn model_json(spec: &TableSpec) -> Value {
     ) {
         v["fresnel"] = json!({
             "name": "per slice, from the fresnel axis",
+            "parameters": m.fresnel,
+            "parameters_meaning": "the preset's model.fresnel: none (Schlick for an F0 axis, exact dielectric for an eta axis) or a conductor whose k is kept and eta replaced by the axis",
             "slices": (0..spec.axes[2].size).map(|z| {
                 let f = crate::table::energy::fresnel_of_slice(spec, z);
                 json!({"name": f.name(), "formula": f.formula(), "parameters": f})

@@ -230,11 +230,10 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
                     .ok_or_else(|| format!("axis {an} lacks {k}"))?,
             );
         }
-        if let Some(q) = a
-            .get("quantity")
-            .and_then(Value::as_str)
-            .and_then(|q| q.strip_prefix("roughness:"))
-        {
+        if let Some(q) = a.get("quantity").and_then(Value::as_str).and_then(|q| {
+            q.strip_prefix("roughness:")
+                .or_else(|| q.strip_prefix("fresnel:"))
+        }) {
             o.insert("quantity".into(), json!(q));
         }
         axes.insert(an.into(), Value::Object(o));
