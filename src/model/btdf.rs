@@ -9,7 +9,7 @@
 //! **Reflection and transmission albedo in micro-normal space.** For a micro-normal h with
 //! c = v·h > 0 the reflected direction is l_r = 2c h − v (dω_l = 4c dω_h, Walter eq. 14) and
 //! the refracted one l_t = (c/η − cos θt) h − v/η with cos θt = √(1 − (1 − c²)/η²) (Walter
-//! eq. 40). Walter's scattering function of a microfacet surface (eq. 18),
+//! eq. 40). Walter's scattering function of a microfacet surface (§4),
 //! f(v, l) = |v·h|/(|n·v||n·l|) · {F, 1 − F} · G · D · |∂ω_h/∂ω_l|, of which the BRDF
 //! (eq. 20) and the BTDF (eq. 21) are the two cases with their Jacobians (eq. 14, eq. 17),
 //! gives f |n·l| dω_l = c {F, 1 − F} G D/(n·v) dω_h for both. So
@@ -19,7 +19,7 @@
 //! and with n·l_t < 0.
 //!
 //! With G = G1(v) alone the two integrands sum to D G1(v) c/(n·v), whose integral over
-//! c > 0 is 1 (Smith's projected-area normalization, Heitz 2014 eq. 7): so R + T ≤ 1, with
+//! c > 0 is 1 (Smith's projected-area normalization of the visible normals, Heitz 2014 §2–5): so R + T ≤ 1, with
 //! the defect the energy lost by single scattering, and R + T → 1 as α → 0.
 //!
 //! Masking: separable Smith G = G1(n·v) G1(|n·l|) (Walter et al. 2007, eq. 23), both

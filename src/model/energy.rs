@@ -1,7 +1,7 @@
 //! Energy compensation of single-scattering microfacet BRDFs.
 //!
 //! **Kulla & Conty 2017** ("Revisiting Physically Based Shading at Imageworks", SIGGRAPH
-//! course *Physically Based Shading in Theory and Practice*, slides 16–19): with E(μ) the
+//! course *Physically Based Shading in Theory and Practice*, the energy compensation part): with E(μ) the
 //! directional albedo of the lobe at F = 1 and E_avg = 2∫₀¹ E(μ) μ dμ its cosine-weighted
 //! average, the multiple-scattering lobe
 //!
@@ -13,10 +13,10 @@
 //! `F_avg² E_avg / (1 − F_avg (1 − E_avg))`, `F_avg = 2∫₀¹ F(μ) μ dμ`,
 //!
 //! the sum over k ≥ 1 bounces of F_avg^(k+1) E_avg (1 − E_avg)^k divided by f_ms's own
-//! average albedo 1 − E_avg (their slide 18).
+//! average albedo 1 − E_avg (their Fresnel extension).
 //!
 //! **Turquin 2019** ("Practical multiple scattering compensation for microfacet models",
-//! Industrial Light & Magic technical report, eq. 6–8): scale the single-scattering lobe by
+//! Industrial Light & Magic technical report): scale the single-scattering lobe by
 //! `1 + F0 (1 − E(μo))/E(μo)` with E the F = 1 albedo (the `G` channel of a Filament `dfg`
 //! table); at F0 = 1 the compensated albedo E·(1 + (1 − E)/E) is exactly 1.
 
@@ -25,7 +25,7 @@ use crate::integrate::{integrate, Tolerance};
 use std::f64::consts::PI;
 
 /// F_avg of Schlick's Fresnel in closed form: 2∫₀¹ (F0 + (1 − F0)(1 − μ)⁵) μ dμ
-/// = F0 + (1 − F0)·2·B(2, 6) = F0 + (1 − F0)/21 = (20 F0 + 1)/21 (Kulla & Conty 2017, slide 18).
+/// = F0 + (1 − F0)·2·B(2, 6) = F0 + (1 − F0)/21 = (20 F0 + 1)/21 (the value Kulla & Conty 2017 give).
 pub fn f_avg_schlick(f0: f64) -> f64 {
     (20.0 * f0 + 1.0) / 21.0
 }
@@ -77,7 +77,7 @@ pub fn kulla_conty_f_ms(e_o: f64, e_i: f64, e_avg: f64) -> f64 {
 }
 
 /// Turquin's compensation factor `1 + F0 (1 − E)/E` for the single-scattering lobe, with E
-/// the F = 1 directional albedo (Turquin 2019, eq. 8).
+/// the F = 1 directional albedo (Turquin 2019).
 pub fn turquin_factor(f0: f64, e: f64) -> f64 {
     1.0 + f0 * (1.0 - e) / e
 }
