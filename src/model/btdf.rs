@@ -19,7 +19,7 @@
 //! and with n·l_t < 0.
 //!
 //! With G = G1(v) alone the two integrands sum to D G1(v) c/(n·v), whose integral over
-//! c > 0 is 1 (Smith's projected-area normalization of the visible normals, Heitz 2014 §2–5): so R + T ≤ 1, with
+//! c > 0 is 1 (the normalization of the visible normals that defines Smith G1, Heitz 2014): so R + T ≤ 1, with
 //! the defect the energy lost by single scattering, and R + T → 1 as α → 0.
 //!
 //! Masking: separable Smith G = G1(n·v) G1(|n·l|) (Walter et al. 2007, eq. 23), both
