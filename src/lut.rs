@@ -1,7 +1,7 @@
 //! A baked lookup table: its axes (with every texel's coordinate), its channels, its f32
 //! texels, and what the bake measured. Also the lookup a GPU performs on it.
 
-use crate::model::RoughnessQuantity;
+use crate::model::{FresnelQuantity, RoughnessQuantity};
 use serde::Serialize;
 
 /// Where texel coordinates sit on an axis of `size` texels spanning `[lo, hi]`.
@@ -33,6 +33,8 @@ pub enum Quantity {
     Cosine,
     /// A roughness in the named parameterization.
     Roughness(RoughnessQuantity),
+    /// A Fresnel parameter (F0 or the relative index η) in the named parameterization.
+    Fresnel(FresnelQuantity),
 }
 
 /// One axis of a table.
@@ -72,7 +74,15 @@ impl Axis {
     pub fn alpha(&self, i: usize) -> Option<f64> {
         match self.quantity {
             Quantity::Roughness(q) => Some(q.to_alpha(self.coord(i))),
-            Quantity::Cosine => None,
+            Quantity::Cosine | Quantity::Fresnel(_) => None,
+        }
+    }
+
+    /// The Fresnel parameter (F0 or η) of texel `i` (Fresnel axes only).
+    pub fn fresnel_parameter(&self, i: usize) -> Option<f64> {
+        match self.quantity {
+            Quantity::Fresnel(q) => Some(q.to_parameter(self.coord(i))),
+            _ => None,
         }
     }
 

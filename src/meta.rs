@@ -62,6 +62,7 @@ fn quantity_name(a: &Axis) -> String {
     match a.quantity {
         Quantity::Cosine => "cosine".into(),
         Quantity::Roughness(q) => format!("roughness:{}", q.name()),
+        Quantity::Fresnel(q) => format!("fresnel:{}", q.name()),
     }
 }
 
@@ -101,6 +102,13 @@ fn axis_json(k: usize, a: &Axis) -> Value {
             .map(|i| a.alpha(i).unwrap_or(f64::NAN))
             .collect::<Vec<_>>());
     }
+    if let Quantity::Fresnel(q) = a.quantity {
+        v["parameter_mapping"] = json!(q.mapping());
+        v["parameter"] = json!(if q.is_f0() { "F0" } else { "eta" });
+        v["parameter_values"] = json!((0..a.size)
+            .map(|i| a.fresnel_parameter(i).unwrap_or(f64::NAN))
+            .collect::<Vec<_>>());
+    }
     v
 }
 
@@ -117,6 +125,9 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
             Some(DfgLayout::Karis) => "specular = prefiltered_radiance * (F0 * A + B) (Karis 2013 split sum, Schlick Fresnel).",
             _ => "E = (1 - F0) * R + F0 * G = mix(R, G, F0); multiscatter energy compensation: specular *= 1 + F0 * (1 / G - 1); cloth: sheen = prefiltered * B (Filament).",
         },
+        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            crate::table::energy::reconstruction(spec)
+        }
     }
 }
 
@@ -139,6 +150,23 @@ fn model_json(spec: &TableSpec) -> Value {
         "fresnel": {"name": m.fresnel.name(), "formula": m.fresnel.formula(), "parameters": m.fresnel},
         "diffuse": {"name": if m.diffuse_weight > 0.0 { "lambert" } else { "none" }, "weight": m.diffuse_weight, "formula": "f_d = w_d / pi"},
     });
+    if matches!(
+        spec.kind,
+        TableKind::AlbedoFresnel | TableKind::DielectricBtdf
+    ) {
+        v["fresnel"] = json!({
+            "name": "per slice, from the fresnel axis",
+            "parameters": m.fresnel,
+            "parameters_meaning": "the preset's model.fresnel: none (Schlick for an F0 axis, exact dielectric for an eta axis) or a conductor whose k is kept and eta replaced by the axis",
+            "slices": (0..spec.axes[2].size).map(|z| {
+                let f = crate::table::energy::fresnel_of_slice(spec, z);
+                json!({"name": f.name(), "formula": f.formula(), "parameters": f})
+            }).collect::<Vec<_>>(),
+        });
+    }
+    if spec.kind == TableKind::DielectricBtdf {
+        v["form"] = json!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, G = G1(v) G1(l) separable Smith");
+    }
     if spec.kind == TableKind::Dfg {
         v["split_sum"] = json!({
             "fresnel_weight": "Fc = (1 - v.h)^5 (Schlick); f is evaluated with F = 1",
@@ -181,11 +209,18 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
             _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
         },
-        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::Dfg
+        TableKind::DielectricBtdf => "nested adaptive Gauss-Kronrod (G7/K15) over the micro-normal h: phi in [0, pi] (split at pi/2, doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30), with panel boundaries at the reflected direction's horizon and at the critical angle (eta < 1); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
+        TableKind::Albedo
+        | TableKind::AlbedoAvg
+        | TableKind::Dfg
+        | TableKind::KullaConty
+        | TableKind::AlbedoFresnel
             if spec.model.masking != Masking::VGroove || spec.model.ndf.is_none() =>
         {
             let outer = if spec.kind == TableKind::AlbedoAvg {
                 "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. "
+            } else if spec.kind == TableKind::KullaConty {
+                "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. "
             } else {
                 ""
             };

@@ -4,7 +4,7 @@
 //! what is accepted before anything is baked.
 
 use crate::lut::{Axis, Convention, Quantity};
-use crate::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
+use crate::model::{Fresnel, FresnelQuantity, Masking, NdfKind, RoughnessQuantity};
 use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 use serde::Deserialize;
 use std::path::Path;
@@ -191,6 +191,7 @@ struct RawAxes {
     n_dot_h: Option<RawAxis>,
     n_dot_v: Option<RawAxis>,
     roughness: Option<RawAxis>,
+    fresnel: Option<RawAxis>,
 }
 
 impl RawAxes {
@@ -204,6 +205,7 @@ impl RawAxes {
             "n_dot_h" => self.n_dot_h.take(),
             "n_dot_v" => self.n_dot_v.take(),
             "roughness" => self.roughness.take(),
+            "fresnel" => self.fresnel.take(),
             _ => None,
         }
     }
@@ -219,6 +221,7 @@ impl RawAxes {
             ("n_dot_h", &self.n_dot_h),
             ("n_dot_v", &self.n_dot_v),
             ("roughness", &self.roughness),
+            ("fresnel", &self.fresnel),
         ];
         for (n, a) in all {
             if a.is_some() {
@@ -238,7 +241,31 @@ struct RawAxis {
     #[serde(default)]
     convention: Option<Convention>,
     #[serde(default)]
-    quantity: Option<RoughnessQuantity>,
+    quantity: Option<RawQuantity>,
+}
+
+/// An axis quantity as written in a preset: a roughness quantity or a Fresnel quantity.
+#[derive(Clone, Copy, Debug)]
+enum RawQuantity {
+    Roughness(RoughnessQuantity),
+    Fresnel(FresnelQuantity),
+}
+
+impl<'de> Deserialize<'de> for RawQuantity {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        if let Some(q) = RoughnessQuantity::ALL.into_iter().find(|q| q.name() == s) {
+            return Ok(RawQuantity::Roughness(q));
+        }
+        if let Some(q) = FresnelQuantity::from_name(&s) {
+            return Ok(RawQuantity::Fresnel(q));
+        }
+        Err(serde::de::Error::custom(format!(
+            "unknown quantity {s:?} (roughness axes accept {}; fresnel axes accept {})",
+            RoughnessQuantity::ALL.map(|q| q.name()).join(", "),
+            FresnelQuantity::ALL.map(|q| q.name()).join(", ")
+        )))
+    }
 }
 
 /// Parses a preset from JSON text. `source_name` is used in messages (a path or a name),
@@ -550,9 +577,19 @@ fn table_spec(
             )
         })?;
         let is_rough = an == "roughness";
-        let quantity = match (is_rough, raw.quantity) {
-            (true, Some(q)) => Quantity::Roughness(q),
-            (true, None) => {
+        let quantity = match (an, raw.quantity) {
+            ("roughness", Some(RawQuantity::Roughness(q))) => Quantity::Roughness(q),
+            ("fresnel", Some(RawQuantity::Fresnel(q))) => Quantity::Fresnel(q),
+            ("fresnel", _) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    format!(
+                        "is required: say what the fresnel axis means (accepted: {})",
+                        FresnelQuantity::ALL.map(|q| q.name()).join(", ")
+                    ),
+                ))
+            }
+            (_, q) if is_rough && !matches!(q, Some(RawQuantity::Fresnel(_))) => {
                 return Err((
                     format!("axes.{an}.quantity"),
                     format!(
@@ -565,13 +602,24 @@ fn table_spec(
                     ),
                 ))
             }
-            (false, Some(_)) => {
+            (_, Some(RawQuantity::Fresnel(q))) if is_rough => {
                 return Err((
                     format!("axes.{an}.quantity"),
-                    "only the roughness axis takes a quantity (this axis is a cosine)".into(),
+                    format!(
+                        "{:?} is a Fresnel quantity; the roughness axis accepts {}",
+                        q.name(),
+                        RoughnessQuantity::ALL.map(|q| q.name()).join(", ")
+                    ),
                 ))
             }
-            (false, None) => Quantity::Cosine,
+            (_, Some(_)) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    "only the roughness axis (or a fresnel axis) takes a quantity (this axis is a cosine)"
+                        .into(),
+                ))
+            }
+            (_, None) => Quantity::Cosine,
         };
         out_axes.push(Axis {
             name: an.to_string(),

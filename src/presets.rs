@@ -19,6 +19,22 @@ pub const BUILTIN: &[(&str, &str)] = &[
         include_str!("../presets/karis-envbrdf.json"),
     ),
     ("smith-g", include_str!("../presets/smith-g.json")),
+    (
+        "kulla-conty-ggx",
+        include_str!("../presets/kulla-conty-ggx.json"),
+    ),
+    (
+        "fresnel-albedo",
+        include_str!("../presets/fresnel-albedo.json"),
+    ),
+    (
+        "dielectric-btdf",
+        include_str!("../presets/dielectric-btdf.json"),
+    ),
+    (
+        "sheen-charlie",
+        include_str!("../presets/sheen-charlie.json"),
+    ),
 ];
 
 #[cfg(test)]

@@ -230,11 +230,10 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
                     .ok_or_else(|| format!("axis {an} lacks {k}"))?,
             );
         }
-        if let Some(q) = a
-            .get("quantity")
-            .and_then(Value::as_str)
-            .and_then(|q| q.strip_prefix("roughness:"))
-        {
+        if let Some(q) = a.get("quantity").and_then(Value::as_str).and_then(|q| {
+            q.strip_prefix("roughness:")
+                .or_else(|| q.strip_prefix("fresnel:"))
+        }) {
             o.insert("quantity".into(), json!(q));
         }
         axes.insert(an.into(), Value::Object(o));
@@ -293,6 +292,8 @@ fn parse_axis_attribute(s: &str) -> Option<Axis> {
     }
     let quantity = if w[1] == "cosine" {
         Quantity::Cosine
+    } else if let Some(q) = w[1].strip_prefix("fresnel:") {
+        Quantity::Fresnel(crate::model::FresnelQuantity::from_name(q)?)
     } else {
         let q = w[1].strip_prefix("roughness:")?;
         Quantity::Roughness(serde_json::from_value::<RoughnessQuantity>(json!(q)).ok()?)
@@ -630,6 +631,9 @@ pub fn exact_at(
         }
         TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(&spec),
         TableKind::Dfg => dfg::texel_fn(&spec),
+        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            crate::table::energy::texel_fn(&spec)
+        }
     };
     let r = f([0, 0, 0]);
     Ok((r.value, r.error))

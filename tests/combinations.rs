@@ -16,6 +16,12 @@ fn axes(kind: TableKind, n: usize, q: RoughnessQuantity) -> Vec<Axis> {
                     RoughnessQuantity::BlinnPhongExponent => (Quantity::Roughness(q), [1.0, 200.0]),
                     _ => (Quantity::Roughness(q), [0.0, 1.0]),
                 }
+            } else if *name == "fresnel" {
+                // η from 1 to 3: both Fresnel-axis kinds accept it
+                (
+                    Quantity::Fresnel(brdfbake::model::FresnelQuantity::EtaReflectance),
+                    [0.0, 0.5],
+                )
             } else {
                 (Quantity::Cosine, [0.0, 1.0])
             };
@@ -99,6 +105,18 @@ fn every_combination_bakes_or_is_rejected() {
                                         assert!(
                                             *v as f64 <= 1.0 + diffuse + 1e-6,
                                             "{what}: texel {i} E = {v}"
+                                        );
+                                    }
+                                    if matches!(
+                                        kind,
+                                        TableKind::KullaConty
+                                            | TableKind::AlbedoFresnel
+                                            | TableKind::DielectricBtdf
+                                    ) && energy_bounded
+                                    {
+                                        assert!(
+                                            *v as f64 <= 1.0 + 1e-6,
+                                            "{what}: texel {i} {ch} = {v}"
                                         );
                                     }
                                     if kind == TableKind::Dfg && ch != "B" && energy_bounded {

@@ -27,6 +27,7 @@ fn axis_line(a: &crate::lut::Axis) -> String {
     let q = match a.quantity {
         crate::lut::Quantity::Cosine => "cosine".to_string(),
         crate::lut::Quantity::Roughness(q) => format!("roughness ({}: {})", q.name(), q.mapping()),
+        crate::lut::Quantity::Fresnel(q) => format!("fresnel ({}: {})", q.name(), q.mapping()),
     };
     format!(
         "{} — {q}, {} texels over [{}, {}], {}",

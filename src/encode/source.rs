@@ -351,6 +351,7 @@ pub(crate) fn quantity_name(a: &Axis) -> String {
     match a.quantity {
         Quantity::Cosine => "cosine".into(),
         Quantity::Roughness(q) => format!("roughness:{} ({})", q.name(), q.mapping()),
+        Quantity::Fresnel(q) => format!("fresnel:{} ({})", q.name(), q.mapping()),
     }
 }
 

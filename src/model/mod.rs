@@ -13,3 +13,7 @@ pub use fresnel::Fresnel;
 pub use masking::Masking;
 pub use ndf::{Ndf, NdfKind};
 pub use roughness::RoughnessQuantity;
+pub mod energy;
+pub mod fresnel_axis;
+pub use fresnel_axis::FresnelQuantity;
+pub mod btdf;

@@ -43,7 +43,7 @@ pub fn esc(s: &str) -> String {
 fn albedo_of(t: &ReportTable, mu: f64, r: f64) -> Option<f64> {
     let v = t.lut.lookup(&[mu, r]);
     match (t.spec.kind, t.spec.dfg_layout) {
-        (TableKind::Albedo, _) => Some(v[0]),
+        (TableKind::Albedo, _) | (TableKind::KullaConty, _) => Some(v[0]),
         (TableKind::Dfg, Some(DfgLayout::Karis)) => Some(v[0] + v[1]),
         (TableKind::Dfg, _) => Some(v[1]),
         _ => None,
@@ -98,7 +98,10 @@ fn table_section(t: &ReportTable, out: &mut String) {
         out.push_str(&heatmap(lut, c, &format!("{} — {}", spec.name, ch.name)));
     }
     let _ = writeln!(out, "</div>");
-    let is_e = matches!(spec.kind, TableKind::Albedo | TableKind::Dfg);
+    let is_e = matches!(
+        spec.kind,
+        TableKind::Albedo | TableKind::Dfg | TableKind::KullaConty
+    );
     if is_e {
         let picks = roughness_picks(spec);
         let mu_axis = &lut.axes[0];
@@ -207,7 +210,7 @@ fn karis_section(t: &ReportTable, out: &mut String) {
     let ra = lut.axes.last().expect("axis");
     let perceptual = |coord: f64| match ra.quantity {
         Quantity::Roughness(q) => q.to_alpha(coord).sqrt(),
-        Quantity::Cosine => coord,
+        Quantity::Cosine | Quantity::Fresnel(_) => coord,
     };
     let ab = |mu: f64, r: f64| {
         let v = lut.lookup(&[mu, r]);

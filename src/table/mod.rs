@@ -7,6 +7,8 @@
 
 pub mod albedo;
 pub mod dfg;
+pub mod dielectric;
+pub mod energy;
 pub mod local;
 pub mod spec;
 
@@ -62,6 +64,9 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
         }
         TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
         TableKind::Dfg => dfg::texel_fn(spec),
+        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            energy::texel_fn(spec)
+        }
     };
     let dims = [
         spec.axes.first().map_or(1, |a| a.size),
@@ -155,5 +160,8 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
                 v
             }
         },
+        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            energy::channels(spec)
+        }
     }
 }

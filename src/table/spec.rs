@@ -23,10 +23,17 @@ pub enum TableKind {
     AlbedoAvg,
     /// Split-sum DFG table, 2D.
     Dfg,
+    /// Kulla–Conty inputs in one texture: E(cos θv; roughness) and E_avg(roughness), 2D.
+    KullaConty,
+    /// Fresnel-resolved directional albedo E(cos θv; roughness; F0 or η), 3D.
+    AlbedoFresnel,
+    /// Rough dielectric interface (GGX, Walter et al. 2007): reflection and transmission
+    /// albedo R, T over (cos θv; roughness; η), 3D.
+    DielectricBtdf,
 }
 
 impl TableKind {
-    pub const ALL: [TableKind; 7] = [
+    pub const ALL: [TableKind; 10] = [
         TableKind::Ndf,
         TableKind::G1,
         TableKind::G2,
@@ -34,6 +41,9 @@ impl TableKind {
         TableKind::Albedo,
         TableKind::AlbedoAvg,
         TableKind::Dfg,
+        TableKind::KullaConty,
+        TableKind::AlbedoFresnel,
+        TableKind::DielectricBtdf,
     ];
 
     pub fn name(self) -> &'static str {
@@ -45,6 +55,9 @@ impl TableKind {
             TableKind::Albedo => "albedo",
             TableKind::AlbedoAvg => "albedo-avg",
             TableKind::Dfg => "dfg",
+            TableKind::KullaConty => "kulla-conty",
+            TableKind::AlbedoFresnel => "albedo-fresnel",
+            TableKind::DielectricBtdf => "dielectric-btdf",
         }
     }
 
@@ -57,6 +70,10 @@ impl TableKind {
             TableKind::Vgroove => &["n_dot_l", "n_dot_h", "n_dot_v"],
             TableKind::Albedo | TableKind::Dfg => &["cos_theta_v", "roughness"],
             TableKind::AlbedoAvg => &["roughness"],
+            TableKind::KullaConty => &["cos_theta_v", "roughness"],
+            TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+                &["cos_theta_v", "roughness", "fresnel"]
+            }
         }
     }
 
@@ -71,6 +88,15 @@ impl TableKind {
             }
             TableKind::AlbedoAvg => "average albedo E_avg(roughness) = 2 int_0^1 E(mu) mu dmu",
             TableKind::Dfg => "split-sum DFG (Karis A/B or Filament multiscatter R/G[/cloth])",
+            TableKind::KullaConty => {
+                "Kulla-Conty energy compensation: E(cos theta_v; roughness) and E_avg(roughness) at F = 1"
+            }
+            TableKind::AlbedoFresnel => {
+                "Fresnel-resolved directional albedo E(cos theta_v; roughness; F0 or eta)"
+            }
+            TableKind::DielectricBtdf => {
+                "rough dielectric interface: reflection and transmission albedo R, T(cos theta_v; roughness; eta)"
+            }
         }
     }
 }
@@ -191,6 +217,8 @@ impl TableSpec {
                         (kind, ax.name.as_str()),
                         (TableKind::Albedo, _)
                             | (TableKind::Dfg, _)
+                            | (TableKind::KullaConty, _)
+                            | (TableKind::AlbedoFresnel, _)
                             | (TableKind::Vgroove, "n_dot_h")
                     );
                     if !zero_ok && ax.coord(0) <= 0.0 {
@@ -200,6 +228,17 @@ impl TableSpec {
                             kind.name(),
                             if ax.name == "n_dot_h" { "n.h" } else { "n.v" }
                         ));
+                    }
+                }
+                Quantity::Fresnel(q) => {
+                    if ax.name != "fresnel" {
+                        return Err(format!(
+                            "{f}: only the fresnel axis takes a Fresnel quantity"
+                        ));
+                    }
+                    for i in 0..ax.size {
+                        q.check(ax.coord(i))
+                            .map_err(|e| format!("{f}: texel {i}: {e}"))?;
                     }
                 }
                 Quantity::Roughness(q) => {
@@ -330,6 +369,9 @@ impl TableSpec {
                 if self.cloth && self.dfg_layout != Some(DfgLayout::Filament) {
                     return Err("cloth is only available with layout \"filament\"".into());
                 }
+            }
+            TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+                super::energy::validate(self)?;
             }
         }
         if kind != TableKind::Dfg && (self.dfg_layout.is_some() || self.cloth) {

@@ -709,3 +709,80 @@ pub fn average_albedo(m: &RefModel, tol: f64) -> Est<1> {
         evals: evals.get(),
     }
 }
+
+/// Reference directional albedo with a Fresnel factor `fr(v·h)` (the exact or Schlick forms
+/// above): ∫ f(v, l)·F(v·h)·(n·l) dω_l, F = 1 inside `f_cos`.
+pub fn albedo_fresnel<Fr: Fn(f64) -> f64>(m: &RefModel, mu: f64, tol: f64, fr: Fr) -> Est<1> {
+    over_l_kinked(
+        mu,
+        lobe_scale(m),
+        tol,
+        |d| [m.f_cos(mu, d).map_or(0.0, |(f, vh)| f * fr(vh))],
+        |ct, st| m.phi_kink(mu, ct, st),
+    )
+}
+
+/// Reference reflection and transmission albedo [R, T] of a rough dielectric interface
+/// (GGX, separable Smith, relative index η, view on the outer side) in **l-space**, with
+/// Walter et al.'s (2007) BRDF (eq. 20) and BTDF (eq. 21) written out from the paper:
+/// f_t(v, l) = |v·h_t||l·h_t|/(|n·v||n·l|) · η² (1 − F(v·h_t)) G D(h_t) / (v·h_t + η l·h_t)²,
+/// h_t = −(v + η l)/|v + η l| oriented towards n (eq. 16), non-zero only where v·h_t > 0
+/// and l·h_t < 0; T integrates f_t |n·l| over the lower hemisphere, parameterized by the
+/// mirror image l' = (l_x, l_y, −l_z) of l so that [`over_l`] applies.
+pub fn dielectric_rt(alpha: f64, eta: f64, mu: f64, tol: f64) -> Est<2> {
+    let m = RefModel::new(NdfKind::Ggx, alpha, Masking::SmithSeparable);
+    let v = view(mu);
+    // η < 1: total internal reflection for v·h < c = √(1 − η²), i.e. (v·h = |v + l|/2)
+    // inside the cone v·l < 2c² − 1 about v: a square-root kink of F, given to the inner
+    // rule as a breakpoint ψ = π − φ with cos φ = (2c² − 1 − μ cos θ)/(sin θv sin θ)
+    let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
+    let r = over_l_kinked(
+        mu,
+        lobe_scale(&m),
+        0.5 * tol,
+        |d| {
+            [m.f_cos(mu, d)
+                .map_or(0.0, |(f, vh)| f * fresnel_dielectric(vh, eta))]
+        },
+        |ct, st| {
+            if eta >= 1.0 || sin_v * st <= 0.0 {
+                return None;
+            }
+            let cc = 1.0 - eta * eta;
+            let cphi = (2.0 * cc - 1.0 - mu * ct) / (sin_v * st);
+            (cphi.abs() < 1.0).then(|| (-cphi).acos())
+        },
+    );
+    let t = over_l(mu, 1.0, 0.5 * tol, |d| {
+        let l = [d.l[0], d.l[1], -d.l[2]];
+        let s = [v[0] + eta * l[0], v[1] + eta * l[1], v[2] + eta * l[2]];
+        let len = dot(s, s).sqrt();
+        if len == 0.0 {
+            return [0.0];
+        }
+        let mut h = [-s[0] / len, -s[1] / len, -s[2] / len];
+        if h[2] < 0.0 {
+            h = [-h[0], -h[1], -h[2]];
+        }
+        let (vh, lh) = (dot(v, h), dot(l, h));
+        if vh <= 0.0 || lh >= 0.0 || h[2] <= 0.0 {
+            return [0.0];
+        }
+        let nl = -l[2];
+        let g = m.g1(mu) * m.g1(nl);
+        let den = vh + eta * lh;
+        let ft = vh * (-lh) / (mu * nl)
+            * eta
+            * eta
+            * (1.0 - fresnel_dielectric(vh, eta))
+            * g
+            * m.d_vec(h)
+            / (den * den);
+        [ft * nl]
+    });
+    Est {
+        value: [r.value[0], t.value[0]],
+        error: r.error + t.error,
+        evals: r.evals + t.evals,
+    }
+}

@@ -1,0 +1,91 @@
+//! The Fresnel parameter of a table axis (Fresnel-resolved albedo, dielectric BTDF tables):
+//! which quantity the axis coordinate is, and how it maps to F0 or to the relative index η.
+//!
+//! `(η − 1)/(η + 1)` is the signed amplitude reflectance at normal incidence (its square is
+//! F0 = ((η − 1)/(η + 1))², Cook & Torrance 1982, eq. 9): it maps η ∈ (0, ∞) onto (−1, 1)
+//! with η = 1 at 0, η = 1/x at the mirror point −t of η = x, so one axis covers the inside
+//! (η < 1) and outside (η > 1) of an interface with texels spread evenly in reflectance.
+
+/// What a `fresnel` axis coordinate is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FresnelQuantity {
+    /// Schlick's F0 itself (Schlick Fresnel F = F0 + (1 − F0)(1 − v·h)⁵).
+    F0,
+    /// √F0: texels denser at small F0, where dielectrics are (F0 = coordinate²); Schlick.
+    SqrtF0,
+    /// The relative index of refraction η = η_inside/η_outside itself (exact Fresnel).
+    Eta,
+    /// t = (η − 1)/(η + 1) ∈ (−1, 1), η = (1 + t)/(1 − t) (exact Fresnel).
+    EtaReflectance,
+}
+
+impl FresnelQuantity {
+    pub const ALL: [FresnelQuantity; 4] = [
+        FresnelQuantity::F0,
+        FresnelQuantity::SqrtF0,
+        FresnelQuantity::Eta,
+        FresnelQuantity::EtaReflectance,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            FresnelQuantity::F0 => "f0",
+            FresnelQuantity::SqrtF0 => "sqrt-f0",
+            FresnelQuantity::Eta => "eta",
+            FresnelQuantity::EtaReflectance => "eta-reflectance",
+        }
+    }
+
+    /// Parses a name as written in a preset.
+    pub fn from_name(s: &str) -> Option<FresnelQuantity> {
+        Self::ALL.into_iter().find(|q| q.name() == s)
+    }
+
+    /// Whether the coordinate gives Schlick's F0 (else the index η of the exact Fresnel).
+    pub fn is_f0(self) -> bool {
+        matches!(self, FresnelQuantity::F0 | FresnelQuantity::SqrtF0)
+    }
+
+    pub fn mapping(self) -> &'static str {
+        match self {
+            FresnelQuantity::F0 => "F0 = coordinate (Schlick)",
+            FresnelQuantity::SqrtF0 => "F0 = coordinate^2 (Schlick)",
+            FresnelQuantity::Eta => "eta = coordinate (exact Fresnel)",
+            FresnelQuantity::EtaReflectance => {
+                "eta = (1 + coordinate)/(1 - coordinate), i.e. coordinate = (eta - 1)/(eta + 1) (exact Fresnel)"
+            }
+        }
+    }
+
+    /// The parameter (F0 or η) at a coordinate; NaN/∞ outside the domain (validation
+    /// rejects those texels).
+    pub fn to_parameter(self, x: f64) -> f64 {
+        match self {
+            FresnelQuantity::F0 | FresnelQuantity::Eta => x,
+            FresnelQuantity::SqrtF0 => x * x,
+            FresnelQuantity::EtaReflectance => (1.0 + x) / (1.0 - x),
+        }
+    }
+
+    /// Checks one texel's parameter; the message says what is accepted.
+    pub fn check(self, x: f64) -> Result<f64, String> {
+        let p = self.to_parameter(x);
+        if self.is_f0() {
+            if x.is_finite() && x >= 0.0 && p <= 1.0 {
+                return Ok(p);
+            }
+            return Err(format!(
+                "{} coordinate {x} gives F0 = {p}; F0 must be in [0, 1]",
+                self.name()
+            ));
+        }
+        if p.is_finite() && (0.01..=100.0).contains(&p) {
+            return Ok(p);
+        }
+        Err(format!(
+            "{} coordinate {x} gives eta = {p}; eta must be in [0.01, 100]",
+            self.name()
+        ))
+    }
+}

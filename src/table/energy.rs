@@ -1,0 +1,226 @@
+//! `kulla-conty` and `albedo-fresnel`: energy-compensation and Fresnel-resolved albedo
+//! tables, built on the directional and average albedo of `albedo.rs`; validation,
+//! channels and the shader recipe of these kinds and of `dielectric-btdf` (`dielectric.rs`).
+//!
+//! * `kulla-conty`: channels E(μ; r) and E_avg(r) at F = 1 in one 2D texture (E_avg repeated
+//!   along μ), the inputs of Kulla & Conty's multiple-scattering lobe (see
+//!   [`crate::model::energy`]).
+//! * `albedo-fresnel`: E(μ; r; p) = ∫ f (n·l) dω_l with the Fresnel term given by the third
+//!   axis: Schlick with F0 = p (`f0`, `sqrt-f0` axes), exact dielectric with η = p (`eta`,
+//!   `eta-reflectance`), or exact conductor with η = p and the model's k.
+
+use super::albedo::{average_albedo, directional_albedo};
+use super::{TableKind, TableSpec, TexelResult};
+use crate::lut::{Channel, Quantity};
+use crate::model::{Brdf, Fresnel, FresnelQuantity, Masking, NdfKind};
+use rayon::prelude::*;
+
+/// The kind-specific checks of the three kinds (the generic axis checks are done).
+pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
+    let m = &spec.model;
+    let kind = spec.kind.name();
+    let ndf = m
+        .ndf
+        .ok_or_else(|| format!("model.ndf is required for a {kind} table"))?;
+    if m.diffuse_weight != 0.0 {
+        return Err(format!(
+            "model.diffuse must be 0 for a {kind} table (it describes the specular lobe only)"
+        ));
+    }
+    if ndf == NdfKind::Charlie && m.masking.is_smith() {
+        return Err(
+            "smith masking of the charlie NDF is not supported: use masking ashikhmin".into(),
+        );
+    }
+    let fq = match spec.axes.get(2).map(|a| a.quantity) {
+        Some(Quantity::Fresnel(q)) => Some(q),
+        Some(_) => {
+            return Err(format!(
+                "axes.fresnel needs a Fresnel quantity (accepted: {})",
+                FresnelQuantity::ALL.map(|q| q.name()).join(", ")
+            ))
+        }
+        None => None,
+    };
+    match spec.kind {
+        TableKind::KullaConty => {
+            if m.fresnel != Fresnel::None {
+                return Err(format!(
+                    "model.fresnel must be none for a kulla-conty table: E and E_avg are taken at F = 1 and the \
+                     Fresnel term enters through F_avg (see the sidecar's reconstruction), got {:?}",
+                    m.fresnel.name()
+                ));
+            }
+        }
+        TableKind::AlbedoFresnel => {
+            let q = fq.expect("three axes checked");
+            match (q.is_f0(), m.fresnel) {
+                (false, Fresnel::None) if spec.axes[2].fresnel_parameter(0).unwrap_or(1.0) < 1.0 => {
+                    return Err(format!(
+                        "axes.fresnel: the exact dielectric albedo-fresnel table needs eta >= 1 (the view outside the \
+                         denser medium), got eta = {} at texel 0; for eta < 1 total internal reflection puts a kink \
+                         inside the reflection integral: use a dielectric-btdf table, which integrates across it",
+                        spec.axes[2].fresnel_parameter(0).unwrap_or(f64::NAN)
+                    ))
+                }
+                (_, Fresnel::None) => {}
+                (false, Fresnel::Conductor { .. }) => {}
+                _ => {
+                    return Err(format!(
+                        "model.fresnel must be none for an albedo-fresnel table (the fresnel axis gives {}), or \
+                         conductor with an eta or eta-reflectance axis (the axis gives eta, the model k); got {:?} \
+                         with a {} axis",
+                        if q.is_f0() { "Schlick's F0" } else { "the exact dielectric eta" },
+                        m.fresnel.name(),
+                        q.name()
+                    ))
+                }
+            }
+        }
+        TableKind::DielectricBtdf => {
+            let q = fq.expect("three axes checked");
+            if q.is_f0() {
+                return Err(format!(
+                    "axes.fresnel.quantity must be eta or eta-reflectance for a dielectric-btdf table (the \
+                     refraction needs the index itself), got {:?}",
+                    q.name()
+                ));
+            }
+            if ndf != NdfKind::Ggx {
+                return Err(format!(
+                    "model.ndf must be ggx for a dielectric-btdf table (Walter et al. 2007), got {:?}",
+                    ndf.name()
+                ));
+            }
+            if m.masking != Masking::SmithSeparable {
+                return Err(format!(
+                    "model.masking must be smith-separable for a dielectric-btdf table (Walter et al. 2007, \
+                     eq. 23: G1(v) G1(l) on both sides), got {:?}",
+                    m.masking.name()
+                ));
+            }
+            if m.fresnel != Fresnel::None {
+                return Err(format!(
+                    "model.fresnel must be none for a dielectric-btdf table: the exact dielectric Fresnel of the \
+                     fresnel axis' eta is used, got {:?}",
+                    m.fresnel.name()
+                ));
+            }
+            if spec.axes[0].coord(0) <= 0.0 {
+                return Err(
+                    "axes.cos_theta_v: a texel at cosine 0 is not allowed for a dielectric-btdf table (R and T \
+                     divide by n.v); use the centers convention or a range starting above 0"
+                        .into(),
+                );
+            }
+        }
+        _ => unreachable!("not an energy kind"),
+    }
+    Ok(())
+}
+
+/// The Fresnel term of slice `z` of an `albedo-fresnel` or `dielectric-btdf` table.
+pub fn fresnel_of_slice(spec: &TableSpec, z: usize) -> Fresnel {
+    let ax = &spec.axes[2];
+    let p = ax.fresnel_parameter(z).expect("a fresnel axis");
+    match ax.quantity {
+        Quantity::Fresnel(q) if q.is_f0() => Fresnel::Schlick { f0: p },
+        _ => match spec.model.fresnel {
+            Fresnel::Conductor { k, .. } => Fresnel::Conductor { eta: p, k },
+            _ => Fresnel::Dielectric { eta: p },
+        },
+    }
+}
+
+fn ch(name: &str, meaning: &str) -> Channel {
+    Channel {
+        name: name.into(),
+        meaning: meaning.into(),
+    }
+}
+
+pub(crate) fn channels(spec: &TableSpec) -> Vec<Channel> {
+    match spec.kind {
+        TableKind::KullaConty => vec![
+            ch("E", "E(mu; roughness) = int f (n.l) dw_l with F = 1: the single-scattering directional albedo"),
+            ch("E_avg", "E_avg(roughness) = 2 int_0^1 E(mu) mu dmu with F = 1 (the same value in every texel of a row)"),
+        ],
+        TableKind::AlbedoFresnel => vec![ch(
+            "E",
+            "E(mu; roughness; p) = int f (n.l) dw_l with the Fresnel term of the fresnel axis' parameter p (Schlick F0, or exact eta)",
+        )],
+        TableKind::DielectricBtdf => vec![
+            ch("R", "R = int f_r (n.l) dw_l over the upper hemisphere: reflected fraction (exact dielectric F, total internal reflection included)"),
+            ch("T", "T = int f_t |n.l| dw_l over the lower hemisphere: transmitted fraction (radiance not scaled by 1/eta^2)"),
+        ],
+        _ => unreachable!("not an energy kind"),
+    }
+}
+
+/// How a shader uses the channels.
+pub(crate) fn reconstruction(spec: &TableSpec) -> &'static str {
+    match spec.kind {
+        TableKind::KullaConty => "Kulla-Conty 2017: e_o = E(mu_o; r) and e_i = E(mu_i; r) (channel E, two lookups at the same roughness), \
+            e_avg = E_avg (channel E_avg, any mu); f_ms(mu_o, mu_i) = (1 - e_o)(1 - e_i) / (pi (1 - e_avg)); with a Fresnel term multiply f_ms by \
+            F_avg^2 e_avg / (1 - F_avg (1 - e_avg)), F_avg = 2 int_0^1 F(mu) mu dmu ((20 F0 + 1)/21 for Schlick, per colour channel); shade with f + f_ms. \
+            Under uniform (image-based) lighting f_ms integrates to (1 - e_o) times that factor.",
+        TableKind::AlbedoFresnel => "E(mu; roughness; p): the directional albedo with the Fresnel term resolved, not factored as in the split sum. \
+            Sample at the fresnel axis coordinate of the material's F0 or eta (axes[2].parameter_mapping) and use it where a split-sum \
+            E = F0 A + B would be used; 1 - E is the energy that single scattering does not reflect with that Fresnel term.",
+        TableKind::DielectricBtdf => "R = reflected and T = transmitted fraction of light arriving at cos theta_v = mu on a rough dielectric \
+            interface of relative index eta (the fresnel axis); 1 - R - T is the energy lost to single scattering; \
+            R + T <= 1. For eta < 1 the view is inside the denser medium and R includes total internal reflection.",
+        _ => unreachable!("not an energy kind"),
+    }
+}
+
+pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
+    let axes = spec.axes.clone();
+    let tol = spec.tolerance;
+    match spec.kind {
+        TableKind::KullaConty => {
+            let brdfs = super::albedo::brdfs_per_roughness(spec);
+            // E_avg of every row first (each a pure function of its α: deterministic)
+            let avg: Vec<(f64, f64, u64)> =
+                brdfs.par_iter().map(|b| average_albedo(b, tol)).collect();
+            Box::new(move |idx| {
+                let (v, e, n) = directional_albedo(&brdfs[idx[1]], axes[0].coord(idx[0]), tol);
+                let (av, ae, an) = avg[idx[1]];
+                TexelResult {
+                    value: vec![v[0], av],
+                    error: vec![e[0], ae],
+                    // the row's E_avg cost is counted once, at its first texel
+                    evals: n + if idx[0] == 0 { an } else { 0 },
+                }
+            })
+        }
+        TableKind::AlbedoFresnel => {
+            let ny = axes[1].size;
+            let brdfs: Vec<Brdf> = (0..ny * axes[2].size)
+                .into_par_iter()
+                .map(|k| {
+                    let mut m = spec.model.clone();
+                    m.fresnel = fresnel_of_slice(spec, k / ny);
+                    let b = m
+                        .brdf(axes[1].alpha(k % ny).expect("roughness axis"))
+                        .expect("validated");
+                    if let Some(s) = &b.specular {
+                        s.ndf.g1(0.5);
+                    }
+                    b
+                })
+                .collect();
+            Box::new(move |idx| {
+                let (v, e, n) =
+                    directional_albedo(&brdfs[idx[2] * ny + idx[1]], axes[0].coord(idx[0]), tol);
+                TexelResult {
+                    value: v.to_vec(),
+                    error: e.to_vec(),
+                    evals: n,
+                }
+            })
+        }
+        TableKind::DielectricBtdf => super::dielectric::texel_fn(spec),
+        _ => unreachable!("not an energy kind"),
+    }
+}
