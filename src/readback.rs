@@ -634,3 +634,23 @@ pub fn exact_at(
     let r = f([0, 0, 0]);
     Ok((r.value, r.error))
 }
+
+/// Decodes the bytes of an EXR file as `read` does for `path` (no disk access), checked
+/// against `table` when given. The entry point of the `readback_exr` fuzz target.
+pub fn read_exr_bytes(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Vec<(String, String)>), ReadError> {
+    read_exr(path, bytes, table)
+}
+
+/// Decodes the bytes of a KTX2 file as `read` does for `path` (no disk access), checked
+/// against `table` when given. The entry point of the `readback_ktx2` fuzz target.
+pub fn read_ktx2_bytes(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Vec<(String, String)>), ReadError> {
+    read_ktx2(path, bytes, table)
+}
