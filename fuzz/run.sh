@@ -8,5 +8,7 @@ cd "$(dirname "$0")"
 t="$1"; secs="${2:-660}"
 bin="target/$(rustc -vV | sed -n 's/^host: //p')/release/$t"
 mkdir -p "corpus/$t" "artifacts/$t" logs
+# no Rust backtrace: symbolizing one under load outlasted -timeout and hid the crash input
+export RUST_BACKTRACE=0
 exec nice -n 19 "$bin" "corpus/$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
   -print_final_stats=1 -artifact_prefix="artifacts/$t/" > "logs/$t.log" 2>&1

@@ -68,14 +68,32 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
             path.display()
         )));
     }
-    if meta.len() > MAX_FILE_BYTES {
+    if !meta.is_file() {
         return Err(ReadError::Input(format!(
-            "{}: {} bytes is larger than any table brdfbake writes",
-            path.display(),
-            meta.len()
+            "{}: not a regular file (a device, FIFO or socket?); give a .exr, .ktx2 or .json file brdfbake wrote",
+            path.display()
         )));
     }
-    std::fs::read(path).map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))
+    let too_large = |len: u64| {
+        ReadError::Input(format!(
+            "{}: {len} bytes is larger than any table brdfbake writes",
+            path.display(),
+        ))
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    // read at most one byte past the limit: a file may grow, or (in /proc) report length 0
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| {
+            std::io::Read::read_to_end(&mut std::io::Read::take(f, MAX_FILE_BYTES + 1), &mut bytes)
+        })
+        .map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
 }
 
 fn ext_of(path: &Path) -> String {
@@ -428,6 +446,53 @@ fn read_exr(
     ))
 }
 
+/// The KTX 2.0 file identifier (KTX 2.0 specification, section 3.1).
+const KTX2_IDENTIFIER: [u8; 12] = [
+    0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A,
+];
+
+/// Checks what `ktx2::Reader::new` (0.5) indexes without bounds checks, so that a hostile
+/// file gets an error instead of a panic (both found by the `readback_ktx2` fuzz target,
+/// docs/fuzzing.md): the data format descriptor (DFD; offset and length at bytes 48 and 52
+/// of the header, KTX 2.0 §3.1) must lie within the file and hold at least its 4-byte total
+/// size, and no basic DFD block may store a texel block dimension of 255 (stored as
+/// dimension − 1, Khronos Data Format 1.3 §5.7; the reader adds 1 in a `u8`).
+fn ktx2_precheck(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(&KTX2_IDENTIFIER) {
+        return Err(if KTX2_IDENTIFIER.starts_with(bytes) {
+            "the file is truncated: shorter than the KTX 2.0 identifier".into()
+        } else {
+            "no KTX 2.0 identifier".into()
+        });
+    }
+    if bytes.len() < 80 {
+        return Err("the file is truncated: shorter than the 80-byte KTX2 header".into());
+    }
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let (off, len) = (u32_at(bytes, 48) as u64, u32_at(bytes, 52) as u64);
+    if len < 4 || off + len > bytes.len() as u64 {
+        return Err(format!(
+            "the file is truncated or corrupt: its data format descriptor (bytes {off}..{}) does not lie within its {} bytes",
+            off + len,
+            bytes.len()
+        ));
+    }
+    let mut dfd = &bytes[off as usize + 4..(off + len) as usize];
+    while dfd.len() >= 16 {
+        let word = u32_at(dfd, 0);
+        let size = u16::from_le_bytes([dfd[6], dfd[7]]) as usize;
+        // vendor id (17 bits) 0 and descriptor type (15 bits) 0: the basic block
+        if word == 0 && dfd[12..16].contains(&255) {
+            return Err("corrupt data format descriptor: a texel block dimension of 256".into());
+        }
+        if size < 8 || size > dfd.len() {
+            break; // the reader reports a malformed block size itself
+        }
+        dfd = &dfd[size..];
+    }
+    Ok(())
+}
+
 fn read_ktx2(
     path: &Path,
     bytes: &[u8],
@@ -439,7 +504,20 @@ fn read_ktx2(
             path.display()
         ))
     };
-    let r = ::ktx2::Reader::new(bytes).map_err(|e| not_ours(format!("{e:?}")))?;
+    ktx2_precheck(bytes).map_err(not_ours)?;
+    // ktx2_precheck covers the panics known in ktx2 0.5; a panic still left in the parser
+    // becomes an error here rather than a crash
+    let parsed = std::panic::catch_unwind(|| ::ktx2::Reader::new(bytes))
+        .map_err(|_| not_ours("malformed KTX2: the KTX2 parser failed on it".into()))?;
+    let r = parsed.map_err(|e| {
+        not_ours(match e {
+            ::ktx2::ParseError::UnexpectedEnd => {
+                "the file is truncated: its header or index points past its end".into()
+            }
+            ::ktx2::ParseError::BadMagic => "no KTX 2.0 identifier".into(),
+            e => format!("invalid KTX2: {e}"),
+        })
+    })?;
     let writer = r.writer().unwrap_or("").to_string();
     if !writer.starts_with("brdfbake ") {
         return Err(not_ours(format!("KTXwriter is {writer:?}")));
