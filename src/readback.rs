@@ -536,7 +536,9 @@ fn read_ktx2(
         return Err(not_ours("supercompressed or mipmapped".into()));
     }
     let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
-    let d = (hd.pixel_depth.max(1) * hd.layer_count.max(1)) as usize;
+    // u64: depth × layers of a hostile header overflows u32 (found by the readback_ktx2
+    // fuzz target); the product of all sizes is checked against the level's bytes below
+    let d = (hd.pixel_depth.max(1) as u64 * hd.layer_count.max(1) as u64) as usize;
     let mut facts: Facts = vec![
         ("writer".into(), writer),
         (
@@ -565,10 +567,14 @@ fn read_ktx2(
         .levels()
         .next()
         .ok_or_else(|| not_ours("no level".into()))?;
-    let texels = w * h * d;
-    if level.data.len() != texels * components * comp_bytes {
-        return Err(not_ours("level size does not match its header".into()));
+    let need = w as u128 * h as u128 * d as u128 * components as u128 * comp_bytes as u128;
+    if level.data.len() as u128 != need {
+        return Err(not_ours(format!(
+            "level size does not match its header ({} bytes, the header's {w} x {h} x {d} texels need {need})",
+            level.data.len()
+        )));
     }
+    let texels = w * h * d; // ≤ the level's byte count: cannot overflow
     let raw: Vec<f32> = level
         .data
         .chunks_exact(comp_bytes)

@@ -427,6 +427,17 @@ const READBACK: &[(&str, &str, Damage, &[&str])] = &[
         ],
     ),
     (
+        // found by the readback_ktx2 fuzz target: pixel_depth × layer_count overflowed u32
+        "ktx2: fuzz regression, depth x layers overflow",
+        "a.ktx2",
+        |d| {
+            let f = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/fuzz_regressions/ktx2-depth-times-layers-overflow.ktx2");
+            fs::copy(f, d.join("a.ktx2")).unwrap();
+        },
+        &["a.ktx2", "not a KTX2 file brdfbake wrote"],
+    ),
+    (
         // ktx2 0.5 slices the data format descriptor without a bounds check
         "ktx2: data format descriptor past the end",
         "a.ktx2",
