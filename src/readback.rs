@@ -567,8 +567,12 @@ fn read_ktx2(
         .levels()
         .next()
         .ok_or_else(|| not_ours("no level".into()))?;
-    let need = w as u128 * h as u128 * d as u128 * components as u128 * comp_bytes as u128;
-    if level.data.len() as u128 != need {
+    // checked: 2^32 × 2^32 × 2^64 × 16 overflows even u128 (fuzz crash 4)
+    let need = [h, d, components, comp_bytes]
+        .iter()
+        .try_fold(w as u128, |n, &k| n.checked_mul(k as u128));
+    if need != Some(level.data.len() as u128) {
+        let need = need.map_or("more than 2^128".to_string(), |n| n.to_string());
         return Err(not_ours(format!(
             "level size does not match its header ({} bytes, the header's {w} x {h} x {d} texels need {need})",
             level.data.len()

@@ -438,6 +438,18 @@ const READBACK: &[(&str, &str, Damage, &[&str])] = &[
         &["a.ktx2", "not a KTX2 file brdfbake wrote"],
     ),
     (
+        // found by the readback_ktx2 fuzz target: width × height × depth × layers × texel
+        // bytes overflowed even u128
+        "ktx2: fuzz regression, size product overflow",
+        "a.ktx2",
+        |d| {
+            let f = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/fuzz_regressions/ktx2-size-product-overflow.ktx2");
+            fs::copy(f, d.join("a.ktx2")).unwrap();
+        },
+        &["a.ktx2", "not a KTX2 file brdfbake wrote"],
+    ),
+    (
         // ktx2 0.5 slices the data format descriptor without a bounds check
         "ktx2: data format descriptor past the end",
         "a.ktx2",
