@@ -41,6 +41,7 @@ pub mod preset;
 pub mod presets;
 pub mod readback;
 pub mod report;
+pub mod resources;
 pub mod table;
 pub mod write;
 

@@ -406,14 +406,40 @@ pub fn load(path: &Path) -> Result<Preset, LoadError> {
             path.display()
         )));
     }
-    if meta.len() > MAX_PRESET_BYTES {
+    if !meta.is_file() {
         return Err(LoadError::Input(format!(
-            "{}: {} bytes; presets are at most {MAX_PRESET_BYTES} bytes",
-            path.display(),
-            meta.len()
+            "{}: not a regular file (a device, FIFO or socket?); give a preset .json file",
+            path.display()
         )));
     }
-    let bytes = std::fs::read(path).map_err(|e| LoadError::Io(path.display().to_string(), e))?;
+    let too_large = |len: u64| {
+        LoadError::Input(format!(
+            "{}: {len} bytes; presets are at most {MAX_PRESET_BYTES} bytes",
+            path.display(),
+        ))
+    };
+    if meta.len() > MAX_PRESET_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    // read at most one byte past the limit: a file may grow, or (in /proc) report length 0
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| {
+            std::io::Read::read_to_end(
+                &mut std::io::Read::take(f, MAX_PRESET_BYTES + 1),
+                &mut bytes,
+            )
+        })
+        .map_err(|e| LoadError::Io(path.display().to_string(), e))?;
+    if bytes.len() as u64 > MAX_PRESET_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    if bytes.starts_with(b"\xef\xbb\xbf") {
+        return Err(LoadError::Input(format!(
+            "{}: starts with a UTF-8 byte order mark (EF BB BF); save the preset as UTF-8 without BOM",
+            path.display()
+        )));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         LoadError::Input(format!(
             "{}: not UTF-8 text (invalid byte at offset {})",

@@ -68,14 +68,32 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
             path.display()
         )));
     }
-    if meta.len() > MAX_FILE_BYTES {
+    if !meta.is_file() {
         return Err(ReadError::Input(format!(
-            "{}: {} bytes is larger than any table brdfbake writes",
-            path.display(),
-            meta.len()
+            "{}: not a regular file (a device, FIFO or socket?); give a .exr, .ktx2 or .json file brdfbake wrote",
+            path.display()
         )));
     }
-    std::fs::read(path).map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))
+    let too_large = |len: u64| {
+        ReadError::Input(format!(
+            "{}: {len} bytes is larger than any table brdfbake writes",
+            path.display(),
+        ))
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    // read at most one byte past the limit: a file may grow, or (in /proc) report length 0
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| {
+            std::io::Read::read_to_end(&mut std::io::Read::take(f, MAX_FILE_BYTES + 1), &mut bytes)
+        })
+        .map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
 }
 
 fn ext_of(path: &Path) -> String {
@@ -429,6 +447,53 @@ fn read_exr(
     ))
 }
 
+/// The KTX 2.0 file identifier (KTX 2.0 specification, section 3.1).
+const KTX2_IDENTIFIER: [u8; 12] = [
+    0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A,
+];
+
+/// Checks what `ktx2::Reader::new` (0.5) indexes without bounds checks, so that a hostile
+/// file gets an error instead of a panic (both found by the `readback_ktx2` fuzz target,
+/// docs/fuzzing.md): the data format descriptor (DFD; offset and length at bytes 48 and 52
+/// of the header, KTX 2.0 §3.1) must lie within the file and hold at least its 4-byte total
+/// size, and no basic DFD block may store a texel block dimension of 255 (stored as
+/// dimension − 1, Khronos Data Format 1.3 §5.7; the reader adds 1 in a `u8`).
+fn ktx2_precheck(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(&KTX2_IDENTIFIER) {
+        return Err(if KTX2_IDENTIFIER.starts_with(bytes) {
+            "the file is truncated: shorter than the KTX 2.0 identifier".into()
+        } else {
+            "no KTX 2.0 identifier".into()
+        });
+    }
+    if bytes.len() < 80 {
+        return Err("the file is truncated: shorter than the 80-byte KTX2 header".into());
+    }
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let (off, len) = (u32_at(bytes, 48) as u64, u32_at(bytes, 52) as u64);
+    if len < 4 || off + len > bytes.len() as u64 {
+        return Err(format!(
+            "the file is truncated or corrupt: its data format descriptor (bytes {off}..{}) does not lie within its {} bytes",
+            off + len,
+            bytes.len()
+        ));
+    }
+    let mut dfd = &bytes[off as usize + 4..(off + len) as usize];
+    while dfd.len() >= 16 {
+        let word = u32_at(dfd, 0);
+        let size = u16::from_le_bytes([dfd[6], dfd[7]]) as usize;
+        // vendor id (17 bits) 0 and descriptor type (15 bits) 0: the basic block
+        if word == 0 && dfd[12..16].contains(&255) {
+            return Err("corrupt data format descriptor: a texel block dimension of 256".into());
+        }
+        if size < 8 || size > dfd.len() {
+            break; // the reader reports a malformed block size itself
+        }
+        dfd = &dfd[size..];
+    }
+    Ok(())
+}
+
 fn read_ktx2(
     path: &Path,
     bytes: &[u8],
@@ -440,7 +505,20 @@ fn read_ktx2(
             path.display()
         ))
     };
-    let r = ::ktx2::Reader::new(bytes).map_err(|e| not_ours(format!("{e:?}")))?;
+    ktx2_precheck(bytes).map_err(not_ours)?;
+    // ktx2_precheck covers the panics known in ktx2 0.5; a panic still left in the parser
+    // becomes an error here rather than a crash
+    let parsed = std::panic::catch_unwind(|| ::ktx2::Reader::new(bytes))
+        .map_err(|_| not_ours("malformed KTX2: the KTX2 parser failed on it".into()))?;
+    let r = parsed.map_err(|e| {
+        not_ours(match e {
+            ::ktx2::ParseError::UnexpectedEnd => {
+                "the file is truncated: its header or index points past its end".into()
+            }
+            ::ktx2::ParseError::BadMagic => "no KTX 2.0 identifier".into(),
+            e => format!("invalid KTX2: {e}"),
+        })
+    })?;
     let writer = r.writer().unwrap_or("").to_string();
     if !writer.starts_with("brdfbake ") {
         return Err(not_ours(format!("KTXwriter is {writer:?}")));
@@ -459,7 +537,9 @@ fn read_ktx2(
         return Err(not_ours("supercompressed or mipmapped".into()));
     }
     let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
-    let d = (hd.pixel_depth.max(1) * hd.layer_count.max(1)) as usize;
+    // u64: depth × layers of a hostile header overflows u32 (found by the readback_ktx2
+    // fuzz target); the product of all sizes is checked against the level's bytes below
+    let d = (hd.pixel_depth.max(1) as u64 * hd.layer_count.max(1) as u64) as usize;
     let mut facts: Facts = vec![
         ("writer".into(), writer),
         (
@@ -488,10 +568,18 @@ fn read_ktx2(
         .levels()
         .next()
         .ok_or_else(|| not_ours("no level".into()))?;
-    let texels = w * h * d;
-    if level.data.len() != texels * components * comp_bytes {
-        return Err(not_ours("level size does not match its header".into()));
+    // checked: 2^32 × 2^32 × 2^64 × 16 overflows even u128 (fuzz crash 4)
+    let need = [h, d, components, comp_bytes]
+        .iter()
+        .try_fold(w as u128, |n, &k| n.checked_mul(k as u128));
+    if need != Some(level.data.len() as u128) {
+        let need = need.map_or("more than 2^128".to_string(), |n| n.to_string());
+        return Err(not_ours(format!(
+            "level size does not match its header ({} bytes, the header's {w} x {h} x {d} texels need {need})",
+            level.data.len()
+        )));
     }
+    let texels = w * h * d; // ≤ the level's byte count: cannot overflow
     let raw: Vec<f32> = level
         .data
         .chunks_exact(comp_bytes)
@@ -637,4 +725,24 @@ pub fn exact_at(
     };
     let r = f([0, 0, 0]);
     Ok((r.value, r.error))
+}
+
+/// Decodes the bytes of an EXR file as `read` does for `path` (no disk access), checked
+/// against `table` when given. The entry point of the `readback_exr` fuzz target.
+pub fn read_exr_bytes(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Vec<(String, String)>), ReadError> {
+    read_exr(path, bytes, table)
+}
+
+/// Decodes the bytes of a KTX2 file as `read` does for `path` (no disk access), checked
+/// against `table` when given. The entry point of the `readback_ktx2` fuzz target.
+pub fn read_ktx2_bytes(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Vec<(String, String)>), ReadError> {
+    read_ktx2(path, bytes, table)
 }

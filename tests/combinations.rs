@@ -3,6 +3,7 @@
 //! panic, never NaN.
 
 use brdfbake::lut::{Axis, Convention, Quantity};
+use brdfbake::model::ndf::MIN_ALPHA;
 use brdfbake::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
 use brdfbake::table::{bake, DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 
@@ -137,5 +138,117 @@ fn every_combination_bakes_or_is_rejected() {
     assert!(
         baked > 50 && rejected > 50,
         "baked {baked}, rejected {rejected}"
+    );
+}
+
+/// The axes of `kind` at their edges: 2 texels with the endpoints convention, so the texels
+/// sit exactly on the range ends. Cosines run from 1e-6 (grazing; a texel at cos θ = 0 is
+/// refused by validation) to 1; roughness runs
+/// from the smallest accepted α (1e-9, [`MIN_ALPHA`]) — as perceptual roughness √1e-9 — to 1
+/// for the closed-form tables (D, G1, G2 of GGX and Beckmann), from α = 0.01 for the others
+/// (Blinn-Phong: exponent 1e4 down to 0, i.e. α ≈ 0.014 and α = 1).
+fn edge_axes(kind: TableKind, ndf: Option<NdfKind>, q: RoughnessQuantity) -> Vec<Axis> {
+    let closed_form = matches!(
+        kind,
+        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove
+    ) && matches!(ndf, Some(NdfKind::Ggx | NdfKind::Beckmann));
+    kind.axis_names()
+        .iter()
+        .map(|name| {
+            let (quantity, range) = if *name == "roughness" {
+                match q {
+                    // exponent 0 (α = 1) and 1e4 (α ≈ 0.014)
+                    RoughnessQuantity::BlinnPhongExponent => (Quantity::Roughness(q), [0.0, 1e4]),
+                    // closed-form kinds of a closed-form NDF: just above √MIN_ALPHA
+                    // (rounding cannot square it below)
+                    _ if closed_form => {
+                        (Quantity::Roughness(q), [(MIN_ALPHA * 1.000001).sqrt(), 1.0])
+                    }
+                    // α = 0.01: numeric Smith Λ (Gaussian, Charlie) and the adaptive
+                    // quadratures of albedo and DFG take minutes for near-delta lobes
+                    _ => (Quantity::Roughness(q), [0.1, 1.0]),
+                }
+            } else {
+                // cos θ = 0 itself is refused by validation (the tables divide by it)
+                (Quantity::Cosine, [1e-6, 1.0])
+            };
+            Axis {
+                name: name.to_string(),
+                quantity,
+                size: 2,
+                range,
+                convention: Convention::Endpoints,
+            }
+        })
+        .collect()
+}
+
+/// Every table kind × model at its edge texels (cos θ → 0, grazing, roughness → 0 and 1):
+/// every texel finite and within its physical bounds — D ≥ 0; G1, G2, the V-groove term in
+/// [0, 1]; albedo and the DFG scale/bias of an energy-bounded model (Smith masking, F ≤ 1)
+/// in [0, 1 + tolerance] (+ the Lambert weight for albedo) — or a rejection with a message.
+#[test]
+fn edge_texels_are_finite_and_bounded() {
+    let mut baked = std::collections::BTreeMap::new();
+    for kind in TableKind::ALL {
+        for ndf in NdfKind::ALL.map(Some).into_iter().chain([None]) {
+            for masking in Masking::ALL {
+                for fresnel in [Fresnel::None, Fresnel::Dielectric { eta: 1.5 }] {
+                    let q = match ndf {
+                        Some(NdfKind::BlinnPhong) => RoughnessQuantity::BlinnPhongExponent,
+                        _ => RoughnessQuantity::Perceptual,
+                    };
+                    let layout = (kind == TableKind::Dfg).then_some(DfgLayout::Filament);
+                    let spec = TableSpec {
+                        name: "t".into(),
+                        kind,
+                        model: ModelSpec {
+                            ndf,
+                            masking,
+                            fresnel,
+                            diffuse_weight: 0.0,
+                        },
+                        axes: edge_axes(kind, ndf, q),
+                        dfg_layout: layout,
+                        cloth: layout.is_some(),
+                        storage: Storage::F32,
+                        // only finiteness and bounds are checked here: a loose tolerance
+                        // keeps the near-delta lobes fast
+                        tolerance: 1e-4,
+                    };
+                    let what = format!("edges: {kind:?} {ndf:?} {masking:?} {fresnel:?}");
+                    let lut = match bake(&spec) {
+                        Err(e) => {
+                            let msg = e.to_string();
+                            assert!(msg.len() > 20, "{what}: unhelpful error {msg:?}");
+                            continue;
+                        }
+                        Ok(lut) => lut,
+                    };
+                    *baked.entry(kind.name()).or_insert(0) += 1;
+                    let nc = lut.channels.len();
+                    let energy_bounded = masking.is_smith() && ndf != Some(NdfKind::Charlie);
+                    for (i, v) in lut.data.iter().enumerate() {
+                        let ch = &lut.channels[i % nc].name;
+                        assert!(v.is_finite() && *v >= 0.0, "{what}: texel {i} {ch} = {v}");
+                        let bounded_by_1 =
+                            matches!(kind, TableKind::G1 | TableKind::G2 | TableKind::Vgroove)
+                                || (energy_bounded
+                                    && (matches!(kind, TableKind::Albedo | TableKind::AlbedoAvg)
+                                        || (kind == TableKind::Dfg && ch != "B")));
+                        // the bake's own tolerance 1e-4 on top of the physical bound 1
+                        if bounded_by_1 {
+                            assert!(*v as f64 <= 1.0 + 1e-4, "{what}: texel {i} {ch} = {v} > 1");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // every kind must bake at its edges for some model
+    assert_eq!(
+        baked.len(),
+        TableKind::ALL.len(),
+        "kinds baked at their edges: {baked:?}"
     );
 }

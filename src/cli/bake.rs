@@ -31,6 +31,11 @@ pub struct BakeArgs {
     /// Print one JSON document (what was baked or checked) on stdout instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Refuse (exit 2) a bake whose estimated peak memory exceeds SIZE: bytes, or with a
+    /// unit K, M, G, T (powers of 1024), e.g. 8GiB. Estimated from the requested sizes
+    /// before anything is allocated.
+    #[arg(long, value_name = "SIZE", default_value = "2GiB", value_parser = crate::resources::parse_size)]
+    pub max_memory: u64,
 }
 
 /// One output that `--check` found missing or stale.
@@ -182,6 +187,8 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     if a.check {
         return check(&a, &presets, formats.as_deref());
     }
+    let estimate = crate::resources::estimate(&presets, formats.as_deref());
+    crate::resources::check(&estimate, a.max_memory).map_err(CliError::input)?;
     let started = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.map_or(0, usize::from))

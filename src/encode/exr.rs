@@ -362,6 +362,28 @@ pub fn decode_exr(bytes: &[u8]) -> Result<DecodedExr, String> {
         })
         .collect();
 
+    // Refuse a header that declares more pixels than the file holds before the decoder
+    // allocates for them: brdfbake writes uncompressed files, whose pixel data is in the file,
+    // and a hostile data window would otherwise ask for terabytes (found by the readback_exr
+    // fuzz target, docs/fuzzing.md).
+    let meta = ::exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), true)
+        .map_err(|e| format!("reading EXR: {e}"))?;
+    for h in meta.headers.iter() {
+        if h.compression != Compression::Uncompressed {
+            return Err(format!(
+                "{:?} compression; brdfbake writes uncompressed EXR",
+                h.compression
+            ));
+        }
+        let (w, ht) = (h.layer_size.0, h.layer_size.1);
+        let need = (w as u128) * (ht as u128) * (h.channels.bytes_per_pixel as u128);
+        if need > bytes.len() as u128 {
+            return Err(format!(
+                "the header declares {w} x {ht} pixels ({need} bytes of samples), more than the file's {} bytes hold",
+                bytes.len()
+            ));
+        }
+    }
     let image = read()
         .no_deep_data()
         .largest_resolution_level()

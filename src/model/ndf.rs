@@ -101,13 +101,24 @@ pub const MAX_ALPHA: f64 = 100.0;
 const NUMERIC_TOL: f64 = 1e-12;
 
 impl Ndf {
-    /// Builds a distribution; `alpha` must be finite and > 0 (and ≤ 1 for Blinn-Phong,
-    /// whose exponent s = 2/α² − 2 would be negative beyond).
+    /// Builds a distribution; `alpha` must be finite and in [[`MIN_ALPHA`], [`MAX_ALPHA`]]
+    /// (and ≤ 1 for Blinn-Phong, whose exponent s = 2/α² − 2 would be negative beyond).
     pub fn new(kind: NdfKind, alpha: f64) -> Result<Ndf, String> {
         if !(alpha.is_finite() && alpha > 0.0) {
             return Err(format!(
                 "{} roughness alpha must be a finite number > 0, got {alpha}",
                 kind.name()
+            ));
+        }
+        if !(MIN_ALPHA..=MAX_ALPHA).contains(&alpha) {
+            return Err(format!(
+                "{} roughness alpha must be in [{MIN_ALPHA:e}, {MAX_ALPHA}], got {}",
+                kind.name(),
+                if alpha < 1e-3 {
+                    format!("{alpha:e}")
+                } else {
+                    format!("{alpha}")
+                }
             ));
         }
         let norm = match kind {
@@ -338,24 +349,28 @@ pub fn alpha_from_exponent(s: f64) -> f64 {
 /// c(m) with `∫ c exp(−(θ/m)²) cos θ dω = 1` over the hemisphere, i.e.
 /// `1/c = 2π ∫₀^{π/2} exp(−(θ/m)²) cos θ sin θ dθ`, by adaptive quadrature to 1e-14 relative.
 pub fn gaussian_normalization(m: f64) -> f64 {
-    // substitute θ = m·x (x up to π/(2m)) so the bump has unit width
-    let xmax = FRAC_PI_2 / m;
+    // substitute θ = m·x (x up to π/(2m)) so the bump has unit width, and integrate
+    // ∫ e^(−x²) cos θ sin θ / m dx = i / m², which is O(1) for every m, so that the absolute
+    // tolerance stays relative: integrating i itself (≈ m²/2) lost the bump entirely for
+    // m ≲ 1e-6, giving an infinite norm and D = NaN (found by tests/properties.rs). Beyond
+    // x = 40 the integrand is below e^(−1600): the range ends there for narrow lobes.
+    let xmax = (FRAC_PI_2 / m).min(40.0);
     let tol = Tolerance {
         abs: 1e-15,
         initial_panels: 4,
         max_depth: 40,
         ..Default::default()
     };
-    let (i, _) = integrate1(
+    let (i_over_m2, _) = integrate1(
         |x| {
             let th = m * x;
-            (-x * x).exp() * th.cos() * th.sin() * m
+            (-x * x).exp() * th.cos() * th.sin() / m
         },
         0.0,
         xmax,
         tol,
     );
-    1.0 / (2.0 * PI * i)
+    1.0 / (2.0 * PI * i_over_m2 * m * m)
 }
 
 #[cfg(test)]
@@ -467,5 +482,20 @@ mod tests {
         assert!(Ndf::new(NdfKind::Ggx, 0.0).is_err());
         assert!(Ndf::new(NdfKind::Ggx, f64::NAN).is_err());
         assert!(Ndf::new(NdfKind::BlinnPhong, 1.5).is_err());
+        // the documented range [MIN_ALPHA, MAX_ALPHA] is enforced for every NDF, at its
+        // ends exactly (Blinn-Phong and the Gaussian have tighter upper limits of their own)
+        for kind in NdfKind::ALL {
+            assert!(Ndf::new(kind, MIN_ALPHA).is_ok(), "{kind:?} at MIN_ALPHA");
+            let below = Ndf::new(kind, MIN_ALPHA * 0.5).unwrap_err();
+            assert!(below.contains("[1e-9, 100]"), "{kind:?}: {below}");
+            let above = Ndf::new(kind, 200.0).unwrap_err();
+            assert!(
+                above.contains("200") && above.contains("alpha"),
+                "{kind:?}: {above}"
+            );
+        }
+        assert!(Ndf::new(NdfKind::Ggx, MAX_ALPHA).is_ok());
+        assert!(Ndf::new(NdfKind::Beckmann, MAX_ALPHA).is_ok());
+        assert!(Ndf::new(NdfKind::Charlie, MAX_ALPHA).is_ok());
     }
 }

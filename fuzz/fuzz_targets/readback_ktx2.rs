@@ -1,0 +1,11 @@
+//! KTX2 readback (`brdfbake inspect/probe/verify x.ktx2`): any bytes give a Lut or an error.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+use std::path::Path;
+
+fuzz_target!(|data: &[u8]| {
+    let path = Path::new("fuzz.ktx2");
+    if let Ok((lut, _facts)) = brdfbake::readback::read_ktx2_bytes(path, data, None) {
+        let _ = brdfbake::readback::stats(&lut);
+    }
+});
