@@ -168,6 +168,12 @@ fn edge_axes(kind: TableKind, ndf: Option<NdfKind>, q: RoughnessQuantity) -> Vec
                     // quadratures of albedo and DFG take minutes for near-delta lobes
                     _ => (Quantity::Roughness(q), [0.1, 1.0]),
                 }
+            } else if *name == "fresnel" {
+                // η = 1 (index-matched: no reflection) to η = 3, both ends sampled
+                (
+                    Quantity::Fresnel(brdfbake::model::FresnelQuantity::EtaReflectance),
+                    [0.0, 0.5],
+                )
             } else {
                 // cos θ = 0 itself is refused by validation (the tables divide by it)
                 (Quantity::Cosine, [1e-6, 1.0])
