@@ -23,6 +23,7 @@
 //! estimates are summed into the reported error.
 
 use crate::integrate::adaptive::{integrate, Tolerance};
+use crate::integrate::hemisphere::tan_theta_h_max;
 use crate::model::classic::{dir, Dir, Reflectance};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -32,18 +33,6 @@ pub struct Albedo {
     pub value: f64,
     pub error: f64,
     pub evals: u64,
-}
-
-/// `tan θh,max(φ)` for `tan θi = tan_i` (the horizon of ωo = 2(ωi·h)h − ωi).
-#[inline]
-fn tan_theta_h_max(tan_i: f64, cos_phi: f64) -> f64 {
-    let t = tan_i * cos_phi;
-    let s = (1.0 + t * t).sqrt();
-    if t >= 0.0 {
-        s + t
-    } else {
-        1.0 / (s - t)
-    }
 }
 
 /// Rotation about +z by φ.
