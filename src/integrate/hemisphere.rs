@@ -35,6 +35,23 @@ pub struct Node {
     pub sin2_h: f64,
 }
 
+impl Node {
+    /// The node for a view `v = (sin θv, 0, cos θv)` (`mu_v = cos θv`, `sin_v = sin θv`) and a
+    /// half vector at polar angle θh and azimuth φ (`cos_phi = cos φ`): `v·h` from the two
+    /// polar angles, `n·l = 2(v·h)(n·h) − n·v` from `l = 2(v·h)h − v`.
+    #[inline]
+    pub fn at(mu_v: f64, sin_v: f64, cos_phi: f64, sin_h: f64, cos_h: f64) -> Node {
+        let v_dot_h = sin_v * sin_h * cos_phi + mu_v * cos_h;
+        Node {
+            n_dot_v: mu_v,
+            n_dot_l: 2.0 * v_dot_h * cos_h - mu_v,
+            n_dot_h: cos_h,
+            v_dot_h,
+            sin2_h: sin_h * sin_h,
+        }
+    }
+}
+
 /// How the inner (θh) variable is warped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LobeWarp {
@@ -85,6 +102,31 @@ pub fn tan_theta_h_max(tan_v: f64, cos_phi: f64) -> f64 {
     }
 }
 
+/// The tolerances of a nested φ/θh quadrature over the hemisphere to absolute tolerance
+/// `tol_abs`: (inner, outer), the outer one for the whole φ range [0, π] (doubled by mirror
+/// symmetry). Budget: half to the outer φ integral, half to the inner integrals (their errors
+/// add up over a φ-range of π, doubled). The inner integrals are the outer integrand, so
+/// their error is noise to the outer rule: bisecting the outer panels below that noise
+/// floor would only chase it, hence `noise_floor`.
+pub(crate) fn nested_tolerances(tol_abs: f64) -> (Tolerance, Tolerance) {
+    let inner_abs = tol_abs / (4.0 * PI);
+    let inner = Tolerance {
+        abs: inner_abs,
+        initial_panels: 2,
+        max_depth: 40,
+        max_evals: 100_000,
+        ..Default::default()
+    };
+    let outer = Tolerance {
+        abs: tol_abs / 2.0,
+        initial_panels: 2,
+        max_depth: 40,
+        noise_floor: 4.0 * inner_abs,
+        max_evals: 30_000,
+    };
+    (inner, outer)
+}
+
 /// [`integrate`] over consecutive pieces `[cuts[i], cuts[i+1]]`, the tolerance shared in
 /// proportion to length (as `integrate` shares it among its own panels).
 fn integrate_pieces<const N: usize, F: FnMut(f64) -> [f64; N]>(
@@ -123,40 +165,18 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
     let mu_v = n_dot_v.min(1.0);
     let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
     let tan_v = sin_v / mu_v;
-    // Budget: half to the outer φ integral, half to the inner integrals (their errors
-    // add up over a φ-range of π, doubled by symmetry). The inner integrals are the outer
-    // integrand, so their error is noise to the outer rule: bisecting the outer panels
-    // below that noise floor would only chase it, hence `noise_floor`.
-    let inner_abs = tol_abs / (4.0 * PI);
-    let inner_tol = Tolerance {
-        abs: inner_abs,
-        initial_panels: 2,
-        max_depth: 40,
-        max_evals: 100_000,
-        ..Default::default()
-    };
+    let (inner_tol, outer_whole) = nested_tolerances(tol_abs);
+    // per half-range, and each is doubled by symmetry
     let outer_tol = Tolerance {
-        abs: tol_abs / 4.0, // per half-range, and each is doubled by symmetry
-        initial_panels: 2,
-        max_depth: 40,
-        noise_floor: 4.0 * inner_abs,
-        max_evals: 30_000,
+        abs: outer_whole.abs / 2.0,
+        ..outer_whole
     };
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);
     let phi_integrand = |phi: f64| -> [f64; N] {
         let (sp, cp) = phi.sin_cos();
         let tmax = tan_theta_h_max(tan_v, cp);
-        let node_at = |sin_h: f64, cos_h: f64| -> Node {
-            let v_dot_h = sin_v * sin_h * cp + mu_v * cos_h;
-            Node {
-                n_dot_v: mu_v,
-                n_dot_l: 2.0 * v_dot_h * cos_h - mu_v,
-                n_dot_h: cos_h,
-                v_dot_h,
-                sin2_h: sin_h * sin_h,
-            }
-        };
+        let node_at = |sin_h: f64, cos_h: f64| Node::at(mu_v, sin_v, cp, sin_h, cos_h);
         let _ = sp;
         let est = match warp {
             LobeWarp::TanOverScale(scale) | LobeWarp::TanOverScaleVGroove(scale) => {

@@ -214,16 +214,7 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         // dφ/dx = c cosh(s)·S; ×2: φ ∈ [0, π] covers half the plane (mirror symmetry)
         let dphi_ds = 2.0 * c * s.cosh() * big_s;
         let tmax = tan_theta_h_max(tan_v, cp);
-        let node_at = |sin_h: f64, cos_h: f64| -> Node {
-            let v_dot_h = sin_v * sin_h * cp + mu_v * cos_h;
-            Node {
-                n_dot_v: mu_v,
-                n_dot_l: 2.0 * v_dot_h * cos_h - mu_v,
-                n_dot_h: cos_h,
-                v_dot_h,
-                sin2_h: sin_h * sin_h,
-            }
-        };
+        let node_at = |sin_h: f64, cos_h: f64| Node::at(mu_v, sin_v, cp, sin_h, cos_h);
         let stride = 1usize << (MAX_LEVEL - ku);
         let old_stride = if have == usize::MAX {
             0

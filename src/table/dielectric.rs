@@ -14,7 +14,7 @@
 //! continuously).
 
 use super::{TableSpec, TexelResult};
-use crate::integrate::hemisphere::tan_theta_h_max;
+use crate::integrate::hemisphere::{nested_tolerances, tan_theta_h_max};
 use crate::integrate::{integrate, Estimate, Tolerance};
 use crate::model::btdf::{MicroNormal, RoughDielectric};
 use crate::model::{Fresnel, Ndf};
@@ -132,23 +132,9 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
     } else {
         None
     };
-    // budget as in `hemisphere::integrate_over_l`: half outer, half inner (over a φ-range
-    // of π, doubled)
-    let inner_abs = tol / (4.0 * PI);
-    let inner_tol = Tolerance {
-        abs: inner_abs,
-        initial_panels: 2,
-        max_depth: 40,
-        max_evals: 100_000,
-        ..Default::default()
-    };
-    let outer_tol = Tolerance {
-        abs: tol / 2.0, // over [0, π], doubled by symmetry
-        initial_panels: 2,
-        max_depth: 40,
-        noise_floor: 4.0 * inner_abs,
-        max_evals: 30_000,
-    };
+    // budget as in `hemisphere::integrate_over_l`: half outer (over [0, π], doubled by
+    // symmetry), half inner
+    let (inner_tol, outer_tol) = nested_tolerances(tol);
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);
     let to_u = |t: f64| (t / alpha).asinh().min(U_CAP);
