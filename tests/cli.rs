@@ -843,6 +843,15 @@ const FIXTURES: &[(&str, i32, &[&str])] = &[
         &["tables[0]", "smith masking of the charlie NDF", "ashikhmin"],
     ),
     (
+        "dfg-charlie-none.json",
+        INPUT,
+        &[
+            "tables[0]",
+            "\"none\" masking of the charlie NDF",
+            "use masking ashikhmin",
+        ],
+    ),
+    (
         "g1-charlie.json",
         INPUT,
         &["tables[0]", "charlie", "ashikhmin"],

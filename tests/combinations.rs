@@ -143,30 +143,22 @@ fn every_combination_bakes_or_is_rejected() {
 
 /// The axes of `kind` at their edges: 2 texels with the endpoints convention, so the texels
 /// sit exactly on the range ends. Cosines run from 1e-6 (grazing; a texel at cos θ = 0 is
-/// refused by validation) to 1; roughness runs
-/// from the smallest accepted α (1e-9, [`MIN_ALPHA`]) — as perceptual roughness √1e-9 — to 1
-/// for the closed-form tables (D, G1, G2 of GGX and Beckmann), from α = 0.01 for the others
-/// (Blinn-Phong: exponent 1e4 down to 0, i.e. α ≈ 0.014 and α = 1).
-fn edge_axes(kind: TableKind, ndf: Option<NdfKind>, q: RoughnessQuantity) -> Vec<Axis> {
-    let closed_form = matches!(
-        kind,
-        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove
-    ) && matches!(ndf, Some(NdfKind::Ggx | NdfKind::Beckmann));
+/// refused by validation) to 1; roughness runs from just above the smallest accepted α
+/// (1e-9, [`MIN_ALPHA`]) — as perceptual roughness √1e-9 — to 1 for every kind and NDF
+/// (Blinn-Phong: exponent ≈ 2e18 down to 0).
+fn edge_axes(kind: TableKind, q: RoughnessQuantity) -> Vec<Axis> {
     kind.axis_names()
         .iter()
         .map(|name| {
             let (quantity, range) = if *name == "roughness" {
                 match q {
-                    // exponent 0 (α = 1) and 1e4 (α ≈ 0.014)
-                    RoughnessQuantity::BlinnPhongExponent => (Quantity::Roughness(q), [0.0, 1e4]),
-                    // closed-form kinds of a closed-form NDF: just above √MIN_ALPHA
-                    // (rounding cannot square it below)
-                    _ if closed_form => {
-                        (Quantity::Roughness(q), [(MIN_ALPHA * 1.000001).sqrt(), 1.0])
+                    // exponent 0 (α = 1) and s = 2/α² − 2 at α just above MIN_ALPHA (≈ 2e18)
+                    RoughnessQuantity::BlinnPhongExponent => {
+                        let a = MIN_ALPHA * 1.000001;
+                        (Quantity::Roughness(q), [0.0, 2.0 / (a * a) - 2.0])
                     }
-                    // α = 0.01: numeric Smith Λ (Gaussian, Charlie) and the adaptive
-                    // quadratures of albedo and DFG take minutes for near-delta lobes
-                    _ => (Quantity::Roughness(q), [0.1, 1.0]),
+                    // just above √MIN_ALPHA (rounding cannot square it below)
+                    _ => (Quantity::Roughness(q), [(MIN_ALPHA * 1.000001).sqrt(), 1.0]),
                 }
             } else if *name == "fresnel" {
                 // η = 1 (index-matched: no reflection) to η = 3, both ends sampled
@@ -214,7 +206,7 @@ fn edge_texels_are_finite_and_bounded() {
                             fresnel,
                             diffuse_weight: 0.0,
                         },
-                        axes: edge_axes(kind, ndf, q),
+                        axes: edge_axes(kind, q),
                         dfg_layout: layout,
                         cloth: layout.is_some(),
                         storage: Storage::F32,

@@ -10,6 +10,11 @@
 
 const DEG: usize = 16;
 
+/// Most panels one approximation may have (each costs 17 evaluations of a function that is
+/// itself a quadrature): a function that will not resolve (noise, a discontinuity) stops
+/// being bisected there, and its error estimate says how far it got.
+const MAX_PANELS: usize = 4096;
+
 #[derive(Clone, Debug)]
 struct Panel {
     a: f64,
@@ -35,7 +40,7 @@ impl ChebFn {
         while let Some((lo, hi, depth)) = stack.pop() {
             let coef = fit(&mut f, lo, hi);
             let tail = coef[DEG].abs() + coef[DEG - 1].abs();
-            if tail <= tol || depth >= 40 {
+            if tail <= tol || depth >= 40 || panels.len() + stack.len() >= MAX_PANELS {
                 err = err.max(tail);
                 panels.push(Panel { a: lo, b: hi, coef });
             } else {

@@ -132,7 +132,7 @@ impl InnerWarp {
     /// beyond.
     pub fn for_ndf(ndf: &Ndf) -> InnerWarp {
         match (ndf.kind(), ndf.warp()) {
-            (NdfKind::Charlie, _) | (_, LobeWarp::Linear) => {
+            (NdfKind::Charlie, _) | (_, LobeWarp::Linear | LobeWarp::SheenFlank(_)) => {
                 if ndf.alpha() < 1.0 / 16.0 {
                     InnerWarp::CosOverScale(ndf.alpha().sqrt())
                 } else {

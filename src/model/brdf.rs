@@ -26,6 +26,20 @@ impl Specular {
         }
     }
 
+    /// Builds now whatever the masking term will build lazily (the numeric Smith G1 of an
+    /// NDF without a closed-form Λ), so that a table driver can do it once per roughness,
+    /// in parallel, before the texel loop. Maskings that do not use Smith G1 (V-groove,
+    /// Ashikhmin, none) build nothing: sheen's Charlie NDF has no use for its Λ, whose
+    /// numeric derivation is slow for near-delta lobes.
+    pub fn prepare(&self) {
+        if matches!(
+            self.masking,
+            Masking::SmithSeparable | Masking::SmithHeightCorrelated
+        ) {
+            self.ndf.g1(0.5);
+        }
+    }
+
     /// `f(v, l)·(n·l)` at a half-vector node: `D·G·F/(4 n·v)` (the n·l cancels, which keeps
     /// the integrand finite at the horizon).
     #[inline]

@@ -208,8 +208,21 @@ impl Ndf {
                 let th = sin2_h.sqrt().atan2(cos_h);
                 self.norm * (-(th / a) * (th / a)).exp()
             }
-            NdfKind::BlinnPhong => self.norm * cos_h.min(1.0).powf(self.exponent),
-            NdfKind::Charlie => self.norm * sin2_h.max(0.0).powf(0.5 / a),
+            // cosˢθh = exp(s/2 · ln(1 − sin²θh)): from sin²θh, not from cos θh, which
+            // rounds to 1 for θh < 1e-8 while s = 2/α² − 2 reaches 2e18 at α = 1e-9
+            // (a noisy step that no quadrature converges on)
+            NdfKind::BlinnPhong => {
+                self.norm * (0.5 * self.exponent * (-sin2_h.clamp(0.0, 1.0)).ln_1p()).exp()
+            }
+            // sin^{1/α}θh = exp(1/(2α) · ln(1 − cos²θh)): from cos θh, which is exact near
+            // the lobe's peak at θh = π/2, where sin²θh rounds to 1
+            NdfKind::Charlie => {
+                let c = cos_h.min(1.0);
+                if c >= 1.0 {
+                    return 0.0;
+                }
+                self.norm * ((0.5 / a) * (-(c * c)).ln_1p()).exp()
+            }
         }
     }
 
@@ -277,8 +290,11 @@ impl Ndf {
     /// slope distribution in polar coordinates gives
     /// `Λ(μ̃) = (2/μ̃) ∫_{atan μ̃}^{π/2} D(θm) cos θm sin θm [√(tan²θm − μ̃²) − μ̃·acos(μ̃/tan θm)] dθm`.
     /// (Derivation: Λ = (1/μ̃)∫_{q>μ̃}(q − μ̃)P22 dp dq; the φ-integral of (r sin φ − μ̃) over
-    /// r sin φ > μ̃ is 2[√(r² − μ̃²) − μ̃·acos(μ̃/r)].) The substitution θm = θ0 + (π/2 − θ0)w²
-    /// removes the (r − μ̃)^{3/2} behaviour at the lower limit. Returns G1 = μ̃/(μ̃ + μ̃Λ).
+    /// r sin φ > μ̃ is 2[√(r² − μ̃²) − μ̃·acos(μ̃/r)].) The substitution θm = θ0 + w·sinh²t,
+    /// `w = min(α, π/2 − θ0)`, removes the (r − μ̃)^{3/2} behaviour at the lower limit
+    /// (≈ t³) and scales the lobe, which decays over Δθm ~ α, to t ~ 1 whatever α is (a
+    /// fixed θ-scale put no node inside a lobe of α = 1e-9 and converged falsely on 0).
+    /// Returns G1 = μ̃/(μ̃ + μ̃Λ).
     pub fn g1_numeric(&self, mu: f64) -> f64 {
         if mu <= 0.0 {
             return 0.0;
@@ -289,6 +305,8 @@ impl Ndf {
         let cot = mu / (1.0 - mu * mu).sqrt(); // μ̃
         let th0 = cot.atan();
         let span = FRAC_PI_2 - th0;
+        let w = self.alpha.min(span);
+        let tmax = (span / w).sqrt().asinh();
         let tol = Tolerance {
             abs: NUMERIC_TOL,
             initial_panels: 8,
@@ -296,20 +314,23 @@ impl Ndf {
             ..Default::default()
         };
         let (mu_lambda, _) = integrate1(
-            |w| {
-                let th = th0 + span * w * w;
+            |t| {
+                let sh = t.sinh();
+                let th = (th0 + w * sh * sh).min(FRAC_PI_2);
+                // dθ/dt
+                let jac = 2.0 * w * sh * t.cosh();
                 let (s, c) = th.sin_cos();
                 if c <= 0.0 {
                     // the bracket grows like tan θ while D cos θ sin θ → D(π/2)·0: the
                     // product's limit is D(π/2)·sin²θ·1 — finite; evaluate it directly
-                    return 2.0 * self.d_at_theta(th) * s * s * 2.0 * span * w;
+                    return 2.0 * self.d_at_theta(th) * s * s * jac;
                 }
                 let r = s / c;
                 let bracket = (r * r - cot * cot).max(0.0).sqrt() - cot * (cot / r).min(1.0).acos();
-                2.0 * self.d_at_theta(th) * c * s * bracket * 2.0 * span * w
+                2.0 * self.d_at_theta(th) * c * s * bracket * jac
             },
             0.0,
-            1.0,
+            tmax,
             tol,
         );
         cot / (cot + mu_lambda.max(0.0))
@@ -329,6 +350,9 @@ impl Ndf {
     /// The warp the hemisphere quadrature should use for this lobe.
     pub fn warp(&self) -> LobeWarp {
         match self.kind {
+            // narrow sheen lobes sit against the horizon limit (see `SheenFlank`); the
+            // same 1/16 switch as the fast path's `InnerWarp::for_ndf`
+            NdfKind::Charlie if self.alpha < 1.0 / 16.0 => LobeWarp::SheenFlank(self.alpha),
             NdfKind::Charlie => LobeWarp::Linear,
             // Blinn-Phong and the Gaussian have the Beckmann-equivalent width α
             _ => LobeWarp::TanOverScale(self.alpha),
@@ -459,6 +483,76 @@ mod tests {
         for i in 1..50 {
             let mu = i as f64 / 50.0;
             assert!((ndf.g1(mu) - 1.0 / (1.0 + ndf.lambda(mu))).abs() < 1e-14);
+        }
+    }
+
+    /// Near-delta lobes (α down to [`MIN_ALPHA`]): Blinn-Phong's cosˢ and Charlie's
+    /// sin^{1/α} are evaluated without rounding cos θh or sin²θh to 1, so at θh = α·t the
+    /// Blinn-Phong D follows its Gaussian limit norm·exp(−t²) (relative difference O(α²t⁴),
+    /// plus rounding of s·ln(1 − sin²) ~ 1e-16·t²: 1e-9 is loose) — before, cos θh rounded to
+    /// 1 for θh < 1e-8 and D was flat across the whole lobe.
+    #[test]
+    fn narrow_lobes_are_resolved() {
+        for alpha in [MIN_ALPHA, 1e-7, 1e-5] {
+            let bp = Ndf::new(NdfKind::BlinnPhong, alpha).unwrap();
+            for t in [0.5, 1.0, 2.0] {
+                let th: f64 = alpha * t;
+                let (sn, cs) = th.sin_cos();
+                let d = bp.d_cs(cs, sn * sn);
+                let want = bp.norm * (-t * t).exp();
+                assert!(
+                    ((d - want) / want).abs() < 1e-9,
+                    "alpha={alpha} t={t}: {d} vs {want}"
+                );
+            }
+            // Charlie at θh = π/2 − x: sin^{1/α} = cos^{1/α} x = exp(−(x²/2 + x⁴/12 +
+            // x⁶/45 + O(x⁸))/α), x = t·√α (the series of −ln cos; the next term is below 1e-12)
+            let ch = Ndf::new(NdfKind::Charlie, alpha).unwrap();
+            for t in [0.5, 1.0, 2.0] {
+                let x = t * alpha.sqrt();
+                let d = ch.d_cs(x.sin(), x.cos() * x.cos());
+                let (x2, x4, x6) = (x * x, x.powi(4), x.powi(6));
+                let want = ch.norm * (-(x2 / 2.0 + x4 / 12.0 + x6 / 45.0) / alpha).exp();
+                assert!(
+                    ((d - want) / want).abs() < 1e-6,
+                    "charlie alpha={alpha} t={t}: {d} vs {want}"
+                );
+            }
+        }
+    }
+
+    /// The numeric Smith G1 of near-delta lobes: for α → 0 the Gaussian and Blinn-Phong slope
+    /// distributions tend to Beckmann's (the same exp(−tan²θ/α²) up to O(α²)), so their
+    /// numeric G1 must match Beckmann's closed form across the transition μ ~ α (1e-9:
+    /// the quadrature's 1e-12 tolerance relative to μ̃ ~ α, with room). Before the lobe-scaled
+    /// substitution, α = 1e-9 put no node inside the lobe and returned G1 = 1 at μ = α.
+    #[test]
+    fn numeric_g1_of_near_delta_lobes() {
+        // (α ≤ 1e-6: the O(α²) difference from Beckmann stays below 1e-11)
+        for alpha in [MIN_ALPHA, 1e-7, 1e-6] {
+            let beck = Ndf::new(NdfKind::Beckmann, alpha).unwrap();
+            for kind in [NdfKind::Gaussian, NdfKind::BlinnPhong] {
+                let ndf = Ndf::new(kind, alpha).unwrap();
+                for t in [0.3, 1.0, 3.0] {
+                    let mu = alpha * t;
+                    let (num, cf) = (ndf.g1_numeric(mu), beck.g1(mu));
+                    assert!(
+                        (num - cf).abs() < 1e-9,
+                        "{kind:?} alpha={alpha} mu={mu}: {num} vs {cf}"
+                    );
+                }
+                // and the interpolant built over [0, 1] resolves the transition too
+                assert!(
+                    ndf.g1_error_estimate() < 1e-8,
+                    "{kind:?} alpha={alpha}: {}",
+                    ndf.g1_error_estimate()
+                );
+                let mu = alpha;
+                assert!(
+                    (ndf.g1(mu) - beck.g1(mu)).abs() < 1e-8,
+                    "{kind:?} alpha={alpha}"
+                );
+            }
         }
     }
 

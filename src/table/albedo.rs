@@ -22,7 +22,7 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
                 .brdf(r.alpha(i).expect("roughness axis"))
                 .expect("validated");
             if let Some(s) = &b.specular {
-                s.ndf.g1(0.5);
+                s.prepare();
             }
             b
         })

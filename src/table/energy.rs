@@ -205,7 +205,7 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
                         .brdf(axes[1].alpha(k % ny).expect("roughness axis"))
                         .expect("validated");
                     if let Some(s) = &b.specular {
-                        s.ndf.g1(0.5);
+                        s.prepare();
                     }
                     b
                 })

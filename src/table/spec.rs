@@ -308,6 +308,24 @@ impl TableSpec {
             }
             Ok(())
         };
+        // Charlie is a sheen distribution, paired with the Ashikhmin visibility (Estevez &
+        // Kulla 2017; Neubelt & Pettineo 2013): it has no closed-form Smith Λ, and without
+        // masking its D/(4 n·v) albedo grows without bound at grazing views for narrow lobes
+        // (α = 1e-9, cos θv = 1e-6: ~10⁴), which no absolute tolerance reaches in bounded time
+        if m.ndf == Some(NdfKind::Charlie)
+            && !matches!(kind, TableKind::Ndf | TableKind::G1)
+            && m.masking != Masking::Ashikhmin
+        {
+            let what = if m.masking.is_smith() {
+                "smith".to_string()
+            } else {
+                format!("{:?}", m.masking.name())
+            };
+            return Err(format!(
+                "{what} masking of the charlie NDF is not supported: use masking ashikhmin (charlie is a sheen \
+                 distribution, defined with the ashikhmin visibility)"
+            ));
+        }
         match kind {
             TableKind::Ndf => {
                 need_ndf("")?;
