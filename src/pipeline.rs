@@ -94,13 +94,28 @@ pub fn bake_preset(
     out: &Path,
     formats: Option<&[Format]>,
 ) -> Result<(Vec<BakedTable>, Files), PipelineError> {
+    bake_preset_until(preset, out, formats, None)
+}
+
+/// [`bake_preset`] that gives up once `deadline` has passed (`bake --max-time`): an
+/// environment error (the machine was slower than the estimate), nothing to write.
+pub fn bake_preset_until(
+    preset: &Preset,
+    out: &Path,
+    formats: Option<&[Format]>,
+    deadline: Option<&crate::resources::Deadline>,
+) -> Result<(Vec<BakedTable>, Files), PipelineError> {
     let dir = table_dir(out, &preset.name);
     let mut baked = Vec::new();
     let mut files = Vec::new();
     for t in &preset.tables {
         let start = Instant::now();
-        let mut lut = crate::table::bake(&t.spec)
-            .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
+        let mut lut = crate::table::bake_until(&t.spec, deadline).map_err(|e| match e {
+            crate::table::BakeError::TimeLimit { .. } => {
+                PipelineError::Environment(format!("preset {}: {e}", preset.name))
+            }
+            _ => PipelineError::Input(format!("preset {}: {e}", preset.name)),
+        })?;
         let elapsed = start.elapsed();
         if t.scale != 1.0 {
             for v in lut.data.iter_mut() {

@@ -1,6 +1,7 @@
-//! Resource guards: how much memory a bake will need, estimated from the requested sizes
-//! before anything is allocated, and the check that refuses a bake over the limit
-//! (`brdfbake bake --max-memory SIZE`) instead of letting it thrash or be killed.
+//! Resource guards: how much memory and time a bake will need, estimated from the
+//! requested sizes before anything is allocated, and the checks that refuse a bake over a
+//! limit (`brdfbake bake --max-memory SIZE --max-time SECONDS`) instead of letting it
+//! thrash, be killed, or hold a CI job for hours.
 //!
 //! The estimate is deliberately an upper bound of what the pipeline holds at its peak: a
 //! bake keeps every table's texels and every encoded file in memory until all are written
@@ -92,6 +93,168 @@ pub fn estimate(presets: &[Preset], formats: Option<&[Format]>) -> Estimate {
         }
     }
     total
+}
+
+/// The default `--max-time`: 10 minutes (every default preset together takes seconds).
+pub const DEFAULT_MAX_SECONDS: f64 = 600.0;
+
+/// CPU time per integrand evaluation assumed by the time estimate: 100 ns. Measured on the
+/// benchmark machine (BENCHMARKS.md: 2-core Xeon, 2026-11-29) at 79–97 ns per evaluation
+/// (CPU time / evaluations of filament-dfg, dielectric-btdf and the V-groove albedo),
+/// rounded up.
+pub const SECONDS_PER_EVALUATION: f64 = 100e-9;
+
+/// CPU time per texel of a closed-form table (ndf, closed-form g1/g2, vgroove), per-texel
+/// overhead included: 1 µs (measured 0.2–0.7 µs per texel on the benchmark machine).
+const SECONDS_PER_CLOSED_FORM_TEXEL: f64 = 1e-6;
+
+/// Integrand evaluations a numeric Smith G1 (NDFs without a closed-form Λ) costs per
+/// roughness value: 17 Chebyshev nodes per panel, up to a few hundred panels near delta
+/// lobes, each node a G7/K15 quadrature of ~300 nodes; 10⁶ is the near-delta worst case
+/// (α = 1e-9: 25–36 ms on the benchmark machine), ~10× the typical case.
+const EVALS_PER_NUMERIC_G1: f64 = 1e6;
+
+/// The typical integrand evaluations per texel of an integrated table kind at the default
+/// tolerance (1e-6), measured with `scripts/bench.sh` on the default presets (evaluations ÷
+/// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e), V-groove albedo 12,985
+/// (`cook-torrance-1982`/albedo), average albedo 159,453 per roughness (`e-avg`), DFG
+/// 1,573 (`karis-envbrdf`) + 1,750 for the cloth channel (`filament-dfg` 3,321), Fresnel
+/// albedo 1,111, dielectric BTDF 19,551 (all 2026-11-29). Grazing views and near-delta
+/// lobes cost more, smooth wide lobes less; the estimate is a guide, the run-time check of
+/// the same limit ([`Deadline`]) is the guarantee.
+fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
+    use crate::model::Masking;
+    use crate::table::TableKind as K;
+    let spec = &t.spec;
+    let vgroove = spec.model.masking == Masking::VGroove;
+    let albedo = if vgroove { 13_000.0 } else { 1_500.0 };
+    // (per texel, per roughness row)
+    match spec.kind {
+        K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),
+        K::Albedo => (albedo, 0.0),
+        K::AlbedoAvg => (160_000.0 * if vgroove { 9.0 } else { 1.0 }, 0.0),
+        K::Dfg => (1_600.0 + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
+        K::KullaConty => (albedo, 160_000.0),
+        K::AlbedoFresnel => (1_200.0, 0.0),
+        K::DielectricBtdf => (20_000.0, 0.0),
+    }
+}
+
+/// Estimated CPU seconds and integrand evaluations of baking one table.
+pub fn estimate_table_time(t: &PresetTable) -> TimeEstimate {
+    let axes = &t.spec.axes;
+    let texels = axes.iter().map(|a| a.size as f64).product::<f64>();
+    let rows = axes
+        .iter()
+        .find(|a| a.name == "roughness")
+        .map_or(1.0, |a| a.size as f64);
+    let (per_texel, per_row) = evals_per_texel(t);
+    let numeric_g1 = t.spec.model.ndf.is_some_and(|k| !k.closed_form_lambda())
+        && matches!(
+            t.spec.model.masking,
+            crate::model::Masking::SmithSeparable | crate::model::Masking::SmithHeightCorrelated
+        );
+    // the numeric G1 is built once per roughness value (per Fresnel slice for 3D kinds)
+    let g1_builds = if numeric_g1 {
+        texels / axes.first().map_or(1.0, |a| a.size as f64)
+    } else {
+        0.0
+    };
+    let evaluations = texels * per_texel + rows * per_row + g1_builds * EVALS_PER_NUMERIC_G1;
+    TimeEstimate {
+        evaluations,
+        cpu_seconds: evaluations * SECONDS_PER_EVALUATION + texels * SECONDS_PER_CLOSED_FORM_TEXEL,
+    }
+}
+
+/// An estimated cost: integrand evaluations and CPU seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimeEstimate {
+    pub evaluations: f64,
+    pub cpu_seconds: f64,
+}
+
+/// Estimates every table of every preset.
+pub fn estimate_time(presets: &[Preset]) -> TimeEstimate {
+    let mut total = TimeEstimate::default();
+    for p in presets {
+        for t in &p.tables {
+            let e = estimate_table_time(t);
+            total.evaluations += e.evaluations;
+            total.cpu_seconds += e.cpu_seconds;
+        }
+    }
+    total
+}
+
+/// Parses `--max-time`: seconds, a finite number > 0 (fractions allowed).
+pub fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!(
+            "{s:?} is not a time limit: expected a number of seconds > 0, e.g. 600 or 0.5"
+        )),
+    }
+}
+
+/// Refuses a bake whose estimated wall time on `threads` threads exceeds `limit` seconds,
+/// with the estimate and how to raise the limit.
+pub fn check_time(est: &TimeEstimate, threads: usize, limit: f64) -> Result<(), String> {
+    let wall = est.cpu_seconds / threads.max(1) as f64;
+    if wall <= limit {
+        return Ok(());
+    }
+    Err(format!(
+        "this bake needs an estimated {} on {threads} thread(s) (~{:.2e} integrand evaluations at ~{} ns each, \
+         typical costs measured on a 2-core machine), more than the limit of {}: raise it with --max-time SECONDS \
+         (e.g. --max-time {}), use more threads, or bake fewer or smaller tables",
+        human_seconds(wall),
+        est.evaluations,
+        SECONDS_PER_EVALUATION * 1e9,
+        human_seconds(limit),
+        (wall * 1.5).ceil()
+    ))
+}
+
+/// A point in time after which a running bake gives up (the run-time side of `--max-time`,
+/// for inputs the estimate underrates: it is checked before every texel).
+#[derive(Clone, Copy, Debug)]
+pub struct Deadline {
+    pub at: std::time::Instant,
+    /// The limit it was made from, for messages.
+    pub seconds: f64,
+}
+
+impl Deadline {
+    /// `seconds` from now (far in the future if that overflows `Instant`).
+    pub fn after(seconds: f64) -> Deadline {
+        let now = std::time::Instant::now();
+        let d = std::time::Duration::try_from_secs_f64(seconds)
+            .unwrap_or(std::time::Duration::from_secs(u32::MAX as u64));
+        Deadline {
+            at: now
+                .checked_add(d)
+                .unwrap_or(now + std::time::Duration::from_secs(1 << 30)),
+            seconds,
+        }
+    }
+
+    pub fn passed(&self) -> bool {
+        std::time::Instant::now() >= self.at
+    }
+}
+
+/// Seconds for people: `850 ms`, `12.3 s`, `4.5 min`, `2.1 h`.
+pub fn human_seconds(s: f64) -> String {
+    if s < 1.0 {
+        format!("{:.0} ms", s * 1e3)
+    } else if s < 120.0 {
+        format!("{s:.1} s")
+    } else if s < 7200.0 {
+        format!("{:.1} min", s / 60.0)
+    } else {
+        format!("{:.1} h", s / 3600.0)
+    }
 }
 
 /// `bytes` for people: `1.5 GiB`, `12.0 MiB`, `512 bytes`.
@@ -186,6 +349,27 @@ mod tests {
         }
         // overflow of the unit multiplication is refused, not wrapped
         assert!(parse_size("17179869184G").is_err());
+    }
+
+    #[test]
+    fn seconds_parse() {
+        assert_eq!(parse_seconds("600").unwrap(), 600.0);
+        assert_eq!(parse_seconds(" 0.5 ").unwrap(), 0.5);
+        for bad in ["", "0", "-1", "NaN", "inf", "1e400", "ten", "5s"] {
+            assert!(parse_seconds(bad).is_err(), "{bad:?} accepted");
+        }
+    }
+
+    #[test]
+    fn time_check_divides_by_threads_and_suggests_enough() {
+        let e = TimeEstimate {
+            evaluations: 1e9,
+            cpu_seconds: 100.0,
+        };
+        assert!(check_time(&e, 2, 50.0).is_ok());
+        let msg = check_time(&e, 1, 50.0).unwrap_err();
+        assert!(msg.contains("--max-time 150"), "{msg}");
+        assert!(msg.contains("100.0 s") && msg.contains("50.0 s"), "{msg}");
     }
 
     #[test]

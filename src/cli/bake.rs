@@ -1,7 +1,7 @@
 //! `brdfbake bake`: presets → textures.
 
 use super::CliError;
-use crate::pipeline::{bake_preset, write_files, PipelineError};
+use crate::pipeline::{bake_preset_until, write_files, PipelineError};
 use crate::preset::{self, Format, LoadError, Preset};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -36,6 +36,11 @@ pub struct BakeArgs {
     /// before anything is allocated.
     #[arg(long, value_name = "SIZE", default_value = "2GiB", value_parser = crate::resources::parse_size)]
     pub max_memory: u64,
+    /// Refuse (exit 2) a bake whose estimated wall time exceeds SECONDS (estimated from the
+    /// requested sizes and typical costs per texel before anything is baked), and stop one
+    /// that is still running after SECONDS (exit 1, nothing written).
+    #[arg(long, value_name = "SECONDS", default_value = "600", value_parser = crate::resources::parse_seconds)]
+    pub max_time: f64,
 }
 
 /// One output that `--check` found missing or stale.
@@ -194,6 +199,10 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         .num_threads(a.threads.map_or(0, usize::from))
         .build()
         .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
+    let time = crate::resources::estimate_time(&presets);
+    crate::resources::check_time(&time, pool.current_num_threads(), a.max_time)
+        .map_err(CliError::input)?;
+    let deadline = crate::resources::Deadline::after(a.max_time);
     // Bake everything in memory first, then write all presets' files in one atomic set:
     // a failure anywhere leaves every previous output as it was.
     let to_err = |e: PipelineError| match e {
@@ -205,7 +214,9 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     let progress = progress_bar(&a, &presets);
     for p in &presets {
         progress.set_message(format!("baking {}", p.name));
-        let (baked, files) = match pool.install(|| bake_preset(p, &a.out, formats.as_deref())) {
+        let (baked, files) = match pool
+            .install(|| bake_preset_until(p, &a.out, formats.as_deref(), Some(&deadline)))
+        {
             Ok(r) => r,
             Err(e) => {
                 progress.finish_and_clear();

@@ -22,6 +22,16 @@ use rayon::prelude::*;
 pub enum BakeError {
     #[error("invalid table spec {name:?}: {msg}")]
     Invalid { name: String, msg: String },
+    #[error(
+        "table {name:?}: stopped at the time limit of {} (--max-time) before all {texels} texels were baked; \
+         nothing was written: raise the limit, use more threads, or bake a smaller table",
+        crate::resources::human_seconds(*seconds)
+    )]
+    TimeLimit {
+        name: String,
+        seconds: f64,
+        texels: usize,
+    },
     #[error("table {name:?}: texel {texel:?} is not finite ({value}) in channel {channel}")]
     NonFinite {
         name: String,
@@ -53,6 +63,17 @@ impl TexelResult {
 
 /// Bakes a table. Validates the spec first; never returns a table with NaN or Inf.
 pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
+    bake_until(spec, None)
+}
+
+/// [`bake`], giving up with [`BakeError::TimeLimit`] once `deadline` has passed (checked
+/// before every texel, so a bake overruns it by at most one texel per thread; a texel's
+/// hemisphere integral is itself bounded by
+/// [`TEXEL_EVAL_BUDGET`](crate::integrate::hemisphere::TEXEL_EVAL_BUDGET)).
+pub fn bake_until(
+    spec: &TableSpec,
+    deadline: Option<&crate::resources::Deadline>,
+) -> Result<Lut, BakeError> {
     spec.validate().map_err(|msg| BakeError::Invalid {
         name: spec.name.clone(),
         msg,
@@ -74,10 +95,18 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
         spec.axes.get(2).map_or(1, |a| a.size),
     ];
     let n = dims[0] * dims[1] * dims[2];
+    let stopped = std::sync::atomic::AtomicBool::new(false);
     let results: Vec<TexelResult> = (0..n)
         .into_par_iter()
         .with_min_len(1)
         .map(|i| {
+            if let Some(d) = deadline {
+                use std::sync::atomic::Ordering::Relaxed;
+                if stopped.load(Relaxed) || d.passed() {
+                    stopped.store(true, Relaxed);
+                    return TexelResult::exact(Vec::new());
+                }
+            }
             let idx = [
                 i % dims[0],
                 (i / dims[0]) % dims[1],
@@ -86,6 +115,13 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
             per_row(idx)
         })
         .collect();
+    if stopped.into_inner() {
+        return Err(BakeError::TimeLimit {
+            name: spec.name.clone(),
+            seconds: deadline.map_or(0.0, |d| d.seconds),
+            texels: n,
+        });
+    }
     let nc = channels.len();
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
