@@ -1,7 +1,8 @@
 //! Reliability (issue 6), beyond the preset fixtures of tests/cli.rs:
 //!
 //! - hostile arguments and files: unreadable presets (also as root), devices, output in
-//!   read-only places, `--max-memory`;
+//!   read-only places, `--max-memory`, `--max-time` (refused by the estimate, and stopped
+//!   at run time);
 //! - files brdfbake reads back (inspect, probe, verify) truncated or corrupt;
 //! - the memory estimate is an upper bound of what a bake holds;
 //! - crash safety: SIGKILL at any moment of a bake, a full disk (file-size rlimit), two bakes
@@ -182,6 +183,113 @@ const CASES: &[(&str, i32, &[&str], Setup)] = &[
             )
             .unwrap();
             os(&["bake", "big.json", "--out", "out"])
+        },
+    ),
+    (
+        "--max-time not a number",
+        INPUT,
+        &["--max-time", "soon", "seconds > 0"],
+        |w| {
+            fs::write(w.join("p.json"), preset(4, 2)).unwrap();
+            os(&["bake", "p.json", "--out", "out", "--max-time", "soon"])
+        },
+    ),
+    ("--max-time 0", INPUT, &["--max-time", "seconds > 0"], |w| {
+        fs::write(w.join("p.json"), preset(4, 2)).unwrap();
+        os(&["bake", "p.json", "--out", "out", "--max-time", "0"])
+    }),
+    (
+        // 2048 × 2048 albedo texels on one thread: ~6·10⁹ evaluations, estimated at over
+        // 10 minutes (the default limit) and refused at once — within the memory limit, so
+        // it is the time estimate that refuses it
+        "estimated time over the default limit",
+        INPUT,
+        &[
+            "needs an estimated",
+            "on 1 thread(s)",
+            "integrand evaluations",
+            "limit of 10.0 min",
+            "--max-time",
+        ],
+        |w| {
+            fs::write(
+                w.join("big.json"),
+                r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo",
+                   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+                   "axes": {"cos_theta_v": {"size": 2048},
+                            "roughness": {"size": 2048, "quantity": "perceptual"}}}]}"#,
+            )
+            .unwrap();
+            os(&["bake", "big.json", "--out", "out", "--threads", "1"])
+        },
+    ),
+    (
+        // estimated at ~20 ms (128 texels at a typical cost), but near-delta sheen lobes
+        // (α ≤ 1e-8) at grazing views cost 0.2–0.4 s per texel: the run-time check of the
+        // same limit stops it (environment error: the machine did not keep to the estimate)
+        "bake still running at --max-time",
+        ENV,
+        &[
+            "stopped at the time limit of 500 ms",
+            "--max-time",
+            "nothing was written",
+        ],
+        |w| {
+            fs::write(
+                w.join("slow.json"),
+                r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo",
+                   "model": {"ndf": "charlie", "masking": "ashikhmin"},
+                   "axes": {"cos_theta_v": {"size": 64, "range": [1e-6, 1e-5], "convention": "endpoints"},
+                            "roughness": {"size": 2, "range": [1e-9, 1e-8], "convention": "endpoints",
+                                          "quantity": "alpha"}}}]}"#,
+            )
+            .unwrap();
+            os(&[
+                "bake",
+                "slow.json",
+                "--out",
+                "out",
+                "--threads",
+                "1",
+                "--max-time",
+                "0.5",
+            ])
+        },
+    ),
+    (
+        "verify: a sidecar of a schema this version does not read",
+        INPUT,
+        &[
+            "t.json",
+            "sidecar schema \"brdfbake.lut/9\"",
+            "reads \"brdfbake.lut/1\"",
+        ],
+        |w| {
+            fs::write(
+                w.join("t.json"),
+                r#"{"schema": "brdfbake.lut/9", "table": {}}"#,
+            )
+            .unwrap();
+            os(&["verify", "t.json"])
+        },
+    ),
+    (
+        // cut mid-way: neither a sidecar nor a preset can be read, and the message says
+        // which reading was tried and why
+        "verify: a truncated sidecar",
+        INPUT,
+        &[
+            "t.json",
+            "invalid JSON",
+            "as a table's sidecar when its \"schema\" is \"brdfbake.lut/1\"",
+        ],
+        |w| {
+            fs::write(
+                w.join("t.json"),
+                r#"{"schema": "brdfbake.lut/1", "table": {"na"#,
+            )
+            .unwrap();
+            os(&["verify", "t.json"])
         },
     ),
     (
@@ -766,4 +874,39 @@ fn concurrent_bakes_into_one_directory() {
         }
         assert_eq!(snapshot(&work.path().join("out")), want, "round {round}");
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// The time estimate behind --max-time
+// ---------------------------------------------------------------------------------------
+
+/// The time estimate (`resources::estimate_table_time`) is built from typical evaluations
+/// per texel; for every integrated table of the default presets it must be within a factor
+/// of the evaluations the bake really spends: not below a third (it would let bakes through
+/// that run three times longer than the limit said) and not above 30× (it would refuse bakes
+/// far inside the limit). The factors leave room for the evaluation counts to change with
+/// the integrators (the fast paths of issue 5) without the estimate becoming useless.
+#[test]
+fn time_estimate_tracks_real_evaluations() {
+    use brdfbake::resources::estimate_table_time;
+    let mut checked = 0;
+    for (name, text) in brdfbake::presets::BUILTIN {
+        let p = brdfbake::preset::parse(text, name, name).unwrap();
+        for t in &p.tables {
+            let lut = brdfbake::table::bake(&t.spec).unwrap();
+            if lut.evaluations == 0 {
+                continue;
+            }
+            let est = estimate_table_time(t).evaluations;
+            let ratio = est / lut.evaluations as f64;
+            assert!(
+                (1.0 / 3.0..=30.0).contains(&ratio),
+                "{name}/{}: estimated {est:.3e} evaluations, spent {} (ratio {ratio:.2})",
+                t.spec.name,
+                lut.evaluations
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "only {checked} integrated tables checked");
 }

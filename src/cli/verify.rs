@@ -100,7 +100,19 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
     let mut jobs: Vec<(String, TableSpec, Lut, f64)> = Vec::new();
-    if matches!(ext, "exr" | "ktx2") || (ext == "json" && is_sidecar(p)) {
+    let schema = if ext == "json" { json_schema(p) } else { None };
+    if let Some(sc) = schema.as_deref() {
+        if sc != crate::meta::SCHEMA && sc.starts_with("brdfbake.lut") {
+            return Err(CliError::input(format!(
+                "{}: sidecar schema {sc:?} is not one this brdfbake ({}) reads: it reads {:?}; re-bake the table \
+                 with this version, or verify it with the brdfbake that wrote it",
+                p.display(),
+                crate::meta::VERSION,
+                crate::meta::SCHEMA
+            )));
+        }
+    }
+    if matches!(ext, "exr" | "ktx2") || schema.as_deref() == Some(crate::meta::SCHEMA) {
         let rb = super::inspect::read(p)?;
         let table = rb.table.ok_or_else(|| {
             CliError::input(format!(
@@ -116,7 +128,24 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         })?;
         jobs.push((a.target.clone(), table.spec, lut, rb.scale));
     } else {
-        for preset in super::bake::resolve(std::slice::from_ref(&a.target))? {
+        // a .json without a sidecar's schema is read as a preset; say so when that fails,
+        // so that a damaged sidecar is not reported only in a preset's terms
+        let presets = super::bake::resolve(std::slice::from_ref(&a.target)).map_err(|mut e| {
+            if ext == "json" {
+                e.msg = format!(
+                    "{} (verify reads a .json file as a table's sidecar when its \"schema\" is {:?}, otherwise as a preset; \
+                     this one has {})",
+                    e.msg,
+                    crate::meta::SCHEMA,
+                    match &schema {
+                        Some(sc) => format!("\"schema\": {sc:?}"),
+                        None => "no readable \"schema\"".into(),
+                    }
+                );
+            }
+            e
+        })?;
+        for preset in presets {
             for t in &preset.tables {
                 let lut = crate::table::bake(&t.spec)
                     .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
@@ -176,15 +205,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
 }
 
-/// A .json path that is a brdfbake sidecar (not a preset): its schema says so.
-fn is_sidecar(p: &Path) -> bool {
-    std::fs::read(p)
-        .ok()
-        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
-        .and_then(|v| {
-            v.get("schema")
-                .and_then(|s| s.as_str())
-                .map(|s| s == crate::meta::SCHEMA)
-        })
-        .unwrap_or(false)
+/// The `"schema"` string of a .json file, if it is readable JSON with one (a sidecar says
+/// `brdfbake.lut/1`, a preset `brdfbake.preset/1`). Reads at most the preset size limit.
+fn json_schema(p: &Path) -> Option<String> {
+    let f = std::fs::File::open(p).ok()?;
+    if !f.metadata().ok()?.is_file() {
+        return None;
+    }
+    let mut b = Vec::new();
+    std::io::Read::read_to_end(&mut std::io::Read::take(f, 64 << 20), &mut b).ok()?;
+    let v: serde_json::Value = serde_json::from_slice(&b).ok()?;
+    v.get("schema")?.as_str().map(str::to_string)
 }
