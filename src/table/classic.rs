@@ -358,8 +358,9 @@ pub(crate) fn check_parameter_axis(
         let x = ax.coord(i);
         if !(lo..=hi).contains(&x) {
             return Err(format!(
-                "{f}: texel {i} is at {x}; {} must be in [{lo}, {hi}]",
-                c.parameter_meaning()
+                "{f}: texel {i} is at {x}, outside the accepted [{lo}, {hi}] (the axis is {} of the {} model)",
+                c.parameter_meaning(),
+                c.name()
             ));
         }
     }
@@ -405,6 +406,14 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
              got {:?}; use a classic-albedo table",
             c.name()
         ));
+    }
+    if let ClassicModel::Lafortune { cx, cy, .. } = *c {
+        if cx != cy {
+            return Err(format!(
+                "model.classic: cx ({cx}) and cy ({cy}) must be equal for a {kind} table: a lobe with cx != cy is \
+                 anisotropic about a tangent the table has no axis for"
+            ));
+        }
     }
     if spec.dfg_layout.is_some() || spec.cloth {
         return Err(format!(
