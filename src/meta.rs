@@ -75,7 +75,7 @@ fn texture_axis(k: usize) -> &'static str {
     ["u", "v", "w (slice)"][k]
 }
 
-fn axis_json(k: usize, a: &Axis) -> Value {
+pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
     let [lo, hi] = a.range;
     let (texel, remap) = match a.convention {
         Convention::Centers => (

@@ -154,13 +154,19 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 meta::SCHEMA
             )));
         }
-        let table = table_from_sidecar(&v)
-            .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
-        rb.hash_matches =
-            Some(v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)));
-        rb.preset = v.get("preset").and_then(Value::as_str).map(String::from);
-        rb.scale = table.scale;
-        rb.table = Some(table);
+        // `measured --out` tables have no preset table to rebuild (nor an input hash)
+        let measured = v.pointer("/table/kind").and_then(Value::as_str)
+            == Some(crate::cli::MEASURED_TABLE_KIND);
+        if !measured {
+            let table = table_from_sidecar(&v)
+                .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
+            rb.hash_matches = Some(
+                v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)),
+            );
+            rb.preset = v.get("preset").and_then(Value::as_str).map(String::from);
+            rb.scale = table.scale;
+            rb.table = Some(table);
+        }
         rb.sidecar = Some(v);
         rb.sidecar_path = Some(sp.clone());
     }

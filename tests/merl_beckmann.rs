@@ -54,7 +54,8 @@ fn beckmann_fit_recovers_parameters() {
     }
 }
 
-/// The CLI reports both fits (`fit` GGX as before, `fit_beckmann`), `--fit beckmann` only
+/// The CLI reports both fits (`fit` GGX as before, `fit_beckmann`), writes the albedo as an
+/// EXR + sidecar table with `--out` (nothing for a bad file), `--fit beckmann` fits only
 /// that one, and an unknown `--fit` NDF is an input error naming what is accepted.
 #[test]
 fn cli_reports_the_beckmann_fit() {
@@ -62,8 +63,10 @@ fn cli_reports_the_beckmann_fit() {
     let file = dir.path().join("beckmann.binary");
     std::fs::write(&file, bytes()).unwrap();
     let bin = env!("CARGO_BIN_EXE_brdfbake");
+    let tables = dir.path().join("tables");
     let out = Command::new(bin)
-        .args(["measured", "--albedo-size", "2", "--json"])
+        .args(["measured", "--albedo-size", "2", "--json", "--out"])
+        .arg(&tables)
         .arg(&file)
         .output()
         .unwrap();
@@ -80,6 +83,59 @@ fn cli_reports_the_beckmann_fit() {
     let g = &v["fit"]["channels"][1]["fit"];
     assert_eq!(g["ndf"], "ggx");
     assert!(g["rel_rms"].as_f64().unwrap() > 1e-3, "{g}");
+
+    // --out wrote the albedo as a table: the EXR holds the reported albedo rows (f32
+    // rounding, relative 2^-24), the sidecar says what it is
+    let rb = brdfbake::readback::read(&tables.join("beckmann-albedo.exr")).unwrap();
+    let lut = rb.lut.unwrap();
+    assert_eq!(lut.axes[0].name, "cos_theta_v");
+    let rows = v["albedo"]["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for (i, r) in rows.iter().enumerate() {
+        for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
+            let e = r["albedo"][c].as_f64().unwrap();
+            // without a preset table the channels come in the file's (alphabetical) order
+            let k = lut.channels.iter().position(|ch| ch.name == name).unwrap();
+            let stored = lut.texel([i, 0, 0], k) as f64;
+            assert!(
+                (stored - e).abs() <= 6e-8 * e.abs(),
+                "{i} {c}: {stored} {e}"
+            );
+        }
+    }
+    let side = rb.sidecar.unwrap();
+    assert_eq!(side["table"]["kind"], "measured-albedo");
+    assert_eq!(side["model"]["fits"][1]["ndf"], "beckmann");
+    // inspect reads it; verify says why it cannot recompute it (exit 2)
+    let st = Command::new(bin)
+        .arg("inspect")
+        .arg(tables.join("beckmann-albedo.exr"))
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let st = Command::new(bin)
+        .arg("verify")
+        .arg(tables.join("beckmann-albedo.exr"))
+        .output()
+        .unwrap();
+    assert_eq!(st.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&st.stderr).contains("measured --out"));
+    // a truncated file writes nothing
+    let bad = dir.path().join("short.binary");
+    std::fs::write(&bad, &bytes()[..1000]).unwrap();
+    let none = dir.path().join("none");
+    let st = Command::new(bin)
+        .args(["measured", "--out"])
+        .arg(&none)
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(st.status.code(), Some(2));
+    assert!(!none.exists());
 
     let out = Command::new(bin)
         .args(["measured", "--albedo-size", "1", "--fit", "beckmann"])

@@ -25,6 +25,9 @@ pub struct MeasuredArgs {
     /// The microfacet NDFs to fit (each + Lambert, Schlick F0, per channel), comma-separated.
     #[arg(long, default_value = "ggx,beckmann")]
     pub fit: String,
+    /// Also write the albedo as a table: DIR/<stem>-albedo.exr and its sidecar .json.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<std::path::PathBuf>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
@@ -87,6 +90,24 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             .map(|(_, f)| f.clone())
             .unwrap_or_default()
     };
+    if let Some(dir) = &a.out {
+        let named: Vec<(&str, Vec<_>)> = all_fits
+            .iter()
+            .map(|(n, f)| (n.name(), f.clone()))
+            .collect();
+        let files = super::measured_table::files(&a.file, &m, &table, a.tolerance, &named, dir)
+            .map_err(CliError::input)?;
+        std::fs::create_dir_all(dir).map_err(|e| {
+            CliError::env(format!(
+                "cannot create output directory {}: {e}",
+                dir.display()
+            ))
+        })?;
+        crate::write::write_all_atomic(&files).map_err(|e| CliError::env(e.to_string()))?;
+        for (p, _) in &files {
+            eprintln!("wrote {}", p.display());
+        }
+    }
     let fits = fits_of(NdfKind::Ggx);
     let fits_beckmann = fits_of(NdfKind::Beckmann);
     let names = ["R", "G", "B"];
