@@ -363,7 +363,6 @@ fn reference_texel(spec: &TableSpec, lut: &Lut, idx: [usize; 3]) -> (Vec<Option<
         // E_y (view azimuth 90 degrees) is E_x of the model with its tangent axes swapped
         // (aspect -> 1/aspect); the azimuth average has no reference here
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
-            use brdfbake::model::classic::Reflectance;
             let c = m.classic.expect("a classic table");
             let (mu, p) = (x(0), x(1));
             let v = reference::view(mu);

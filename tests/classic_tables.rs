@@ -9,7 +9,6 @@
 mod reference;
 
 use brdfbake::lut::{Axis, Convention, Lut, Quantity};
-use brdfbake::model::classic::Reflectance;
 use brdfbake::model::{Fresnel, Masking, RoughnessQuantity};
 use brdfbake::table::classic::{aspect, view_albedo, ClassicModel};
 use brdfbake::table::{bake, ModelSpec, Storage, TableKind, TableSpec};
@@ -103,9 +102,9 @@ fn modified_phong_normal_view_is_kd_plus_ks() {
     let c = ClassicModel::ModifiedPhong { kd: 0.3, ks: 0.6 };
     for ps in [[0.0, 1.0], [10.0, 200.0]] {
         let lut = table2d(c, [0.5, 1.0], ps, 1e-9);
-        for j in 0..2 {
+        for (j, n) in ps.into_iter().enumerate() {
             assert_close(
-                &format!("n = {}", ps[j]),
+                &format!("n = {n}"),
                 lut.texel([1, j, 0], 0),
                 0.9,
                 lut.error_estimate[0],
@@ -340,8 +339,8 @@ fn anisotropy_zero_is_the_isotropic_table() {
         let a = aniso_table(c, ps, [0.0, 1.0], 1e-8);
         let iso = table2d(c, [0.2, 0.8], ps, 1e-8);
         assert_eq!(aspect(0.0), 1.0);
-        for i in 0..2 {
-            for j in 0..2 {
+        for (i, mu) in [0.2, 0.8].into_iter().enumerate() {
+            for (j, p) in ps.into_iter().enumerate() {
                 for ch in 0..3 {
                     assert_eq!(
                         a.texel([i, j, 0], ch),
@@ -349,8 +348,7 @@ fn anisotropy_zero_is_the_isotropic_table() {
                         "{c:?} [{i}, {j}] channel {ch}"
                     );
                 }
-                let mu = [0.2, 0.8][i];
-                let e90 = view_albedo(c.reflectance(ps[j], 1.0), mu, FRAC_PI_2, 1e-8);
+                let e90 = view_albedo(c.reflectance(p, 1.0), mu, FRAC_PI_2, 1e-8);
                 let stored = iso.texel([i, j, 0], 0) as f64;
                 let bound = iso.error_estimate[0] + e90.error + F32_REL * stored.max(1.0);
                 assert!(
