@@ -651,3 +651,19 @@ fn cli_bakes_deterministically_and_verifies() {
         .collect();
     assert_eq!(names, ["E_avg", "E_x", "E_y"]);
 }
+
+/// The optional preset `presets/extra/classic-aniso.json` (not built in, not baked by
+/// default) is valid: both tables are `classic-albedo-aniso` with the documented axes.
+#[test]
+fn extra_aniso_preset_is_valid() {
+    let p = brdfbake::preset::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/extra/classic-aniso.json"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(p.tables.len(), 2);
+    for t in &p.tables {
+        assert_eq!(t.spec.kind, TableKind::ClassicAlbedoAniso);
+        let names: Vec<&str> = t.spec.axes.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["cos_theta_v", "roughness", "anisotropy"]);
+    }
+}
