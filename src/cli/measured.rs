@@ -3,8 +3,8 @@
 //! channel with their errors.
 
 use super::CliError;
-use crate::merl::{albedo_table, fit_microfacet_lambert, Merl, FIT_NDFS};
-use crate::model::NdfKind;
+use crate::merl::{albedo_table, fit_model_lambert, Merl, FIT_MODELS};
+use crate::model::{Masking, NdfKind};
 use serde_json::json;
 use std::sync::Arc;
 
@@ -22,7 +22,8 @@ pub struct MeasuredArgs {
     /// Skip the fits.
     #[arg(long)]
     pub no_fit: bool,
-    /// The microfacet NDFs to fit (each + Lambert, Schlick F0, per channel), comma-separated.
+    /// The microfacet models to fit (each + Lambert, Schlick F0, per channel), comma-separated:
+    /// ggx, beckmann (height-correlated Smith G2), cook-torrance (Beckmann, V-groove G).
     #[arg(long, default_value = "ggx,beckmann")]
     pub fit: String,
     /// Also write the albedo as a table: DIR/<stem>-albedo.exr and its sidecar .json.
@@ -50,12 +51,12 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             a.tolerance
         )));
     }
-    let mut ndfs: Vec<NdfKind> = Vec::new();
+    let mut ndfs: Vec<(&str, NdfKind, Masking)> = Vec::new();
     for part in a.fit.split(',').map(str::trim) {
-        let n = FIT_NDFS.iter().find(|n| n.name() == part).ok_or_else(|| {
+        let n = FIT_MODELS.iter().find(|n| n.0 == part).ok_or_else(|| {
             CliError::input(format!(
-                "--fit: unknown NDF {part:?} (accepted: {})",
-                FIT_NDFS.map(|n| n.name()).join(", ")
+                "--fit: unknown model {part:?} (accepted: {})",
+                FIT_MODELS.map(|n| n.0).join(", ")
             ))
         })?;
         if !ndfs.contains(n) {
@@ -69,21 +70,21 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
     let m = Arc::new(m);
     let table = albedo_table(&m, a.albedo_size, a.tolerance);
     // one list of per-channel fits per NDF, in the order asked
-    let all_fits: Vec<(NdfKind, Vec<_>)> = if a.no_fit {
+    let all_fits: Vec<(&str, Vec<_>)> = if a.no_fit {
         Vec::new()
     } else {
         ndfs.iter()
-            .map(|&n| {
+            .map(|&(name, n, mk)| {
                 (
-                    n,
+                    name,
                     (0..3)
-                        .map(|c| fit_microfacet_lambert(&m, c, FIT_STRIDE, n))
+                        .map(|c| fit_model_lambert(&m, c, FIT_STRIDE, n, mk))
                         .collect::<Vec<_>>(),
                 )
             })
             .collect()
     };
-    let fits_of = |n: NdfKind| {
+    let fits_of = |n: &str| {
         all_fits
             .iter()
             .find(|(k, _)| *k == n)
@@ -91,10 +92,7 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             .unwrap_or_default()
     };
     if let Some(dir) = &a.out {
-        let named: Vec<(&str, Vec<_>)> = all_fits
-            .iter()
-            .map(|(n, f)| (n.name(), f.clone()))
-            .collect();
+        let named: Vec<(&str, Vec<_>)> = all_fits.iter().map(|(n, f)| (*n, f.clone())).collect();
         let files = super::measured_table::files(&a.file, &m, &table, a.tolerance, &named, dir)
             .map_err(CliError::input)?;
         std::fs::create_dir_all(dir).map_err(|e| {
@@ -108,8 +106,9 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             eprintln!("wrote {}", p.display());
         }
     }
-    let fits = fits_of(NdfKind::Ggx);
-    let fits_beckmann = fits_of(NdfKind::Beckmann);
+    let fits = fits_of("ggx");
+    let fits_beckmann = fits_of("beckmann");
+    let fits_ct = fits_of("cook-torrance");
     let names = ["R", "G", "B"];
     if a.json {
         let doc = json!({
@@ -131,6 +130,12 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
                 "weights": "cos_i cos_o, nodes above the horizon, measured only",
                 "stride_theta_d_phi_d": FIT_STRIDE,
                 "channels": fits_beckmann.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
+            },
+            "fit_cook_torrance": {
+                "model": "kd/pi + D_Beckmann(alpha) G_V-groove F_schlick(f0) / (4 cos_i cos_o), G = min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) (Cook & Torrance 1982)",
+                "weights": "cos_i cos_o, nodes above the horizon, measured only",
+                "stride_theta_d_phi_d": FIT_STRIDE,
+                "channels": fits_ct.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
             },
         });
         println!(
@@ -161,7 +166,11 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
         match f {
             Some(f) => println!(
                 "  fit {n}: {} + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
-                if f.ndf == "ggx" { "GGX" } else { "Beckmann" },
+                match (f.ndf, f.masking) {
+                    ("ggx", _) => "GGX",
+                    (_, "v-groove") => "Cook-Torrance (Beckmann, V-groove G)",
+                    _ => "Beckmann",
+                },
                 f.kd,
                 f.f0,
                 f.alpha,
