@@ -359,6 +359,30 @@ fn reference_texel(spec: &TableSpec, lut: &Lut, idx: [usize; 3]) -> (Vec<Option<
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             (vec![None; lut.channels.len()], 0.0)
         }
+        // classic models: the view-side albedo int f(l, v) (n.l) dl by the l-space reference;
+        // E_y (view azimuth 90 degrees) is E_x of the model with its tangent axes swapped
+        // (aspect -> 1/aspect); the azimuth average has no reference here
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+            let c = m.classic.expect("a classic table");
+            let (mu, p) = (x(0), x(1));
+            let v = reference::view(mu);
+            let e = |asp: f64| {
+                let f = c.reflectance(p, asp);
+                let w = 2.0 * f.lobe_width();
+                reference::over_l(mu, w, REF_TOL, |d| [f.eval(d.l, v) * d.l[2]])
+            };
+            if spec.kind == TableKind::ClassicAlbedo {
+                let r = e(1.0);
+                (vec![Some(r.value[0])], r.error)
+            } else {
+                let asp = brdfbake::table::classic::aspect(x(2));
+                let (ex, ey) = (e(asp), e(1.0 / asp));
+                (
+                    vec![None, Some(ex.value[0]), Some(ey.value[0])],
+                    ex.error.max(ey.error),
+                )
+            }
+        }
     }
 }
 

@@ -35,6 +35,9 @@ pub enum Quantity {
     Roughness(RoughnessQuantity),
     /// A Fresnel parameter (F0 or the relative index η) in the named parameterization.
     Fresnel(FresnelQuantity),
+    /// The anisotropy a ∈ [0, 1] of a `classic-albedo-aniso` table: aspect = √(1 − 0.9 a),
+    /// α_x = α/aspect, α_y = α·aspect (see `table::classic`).
+    Anisotropy,
 }
 
 /// One axis of a table.
@@ -74,7 +77,7 @@ impl Axis {
     pub fn alpha(&self, i: usize) -> Option<f64> {
         match self.quantity {
             Quantity::Roughness(q) => Some(q.to_alpha(self.coord(i))),
-            Quantity::Cosine | Quantity::Fresnel(_) => None,
+            Quantity::Cosine | Quantity::Fresnel(_) | Quantity::Anisotropy => None,
         }
     }
 

@@ -348,10 +348,15 @@ impl Reflectance for MerlChannel {
     }
 }
 
-/// A GGX + Lambert fit of one channel:
-/// `f = kd/π + D_GGX(α) G2 F_Schlick(F0) / (4 cos θi cos θo)`, height-correlated Smith G2.
+/// A microfacet + Lambert fit of one channel:
+/// `f = kd/π + D(α) G2 F_Schlick(F0) / (4 cos θi cos θo)`, height-correlated Smith G2, D
+/// GGX ([`fit_ggx_lambert`]) or Beckmann ([`fit_beckmann_lambert`]).
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct Fit {
+    /// The fitted NDF: `ggx` or `beckmann`.
+    pub ndf: &'static str,
+    /// Its masking term: `smith-height-correlated`, or `v-groove` for Cook–Torrance.
+    pub masking: &'static str,
     pub kd: f64,
     pub f0: f64,
     pub alpha: f64,
@@ -378,10 +383,10 @@ struct FitNode {
 }
 
 /// The model of [`Fit`] at α (F = 1, no diffuse): S = D G2/(4 cos θi cos θo).
-fn specular(alpha: f64) -> Specular {
+fn specular(ndf: NdfKind, masking: Masking, alpha: f64) -> Specular {
     Specular {
-        ndf: Ndf::new(NdfKind::Ggx, alpha).expect("alpha within the searched range"),
-        masking: Masking::SmithHeightCorrelated,
+        ndf: Ndf::new(ndf, alpha).expect("alpha within the searched range"),
+        masking,
         fresnel: Fresnel::None,
     }
 }
@@ -389,8 +394,8 @@ fn specular(alpha: f64) -> Specular {
 /// Per α: the 2×2 weighted least squares in (kd, F0) (f is linear in them:
 /// f = kd·(1/π) + F0·S(1 − x⁵) + S·x⁵, x = 1 − h·ωi), with kd ≥ 0 and F0 ∈ [0, 1].
 /// Returns (J, kd, F0). Partial sums over fixed chunks, added in order: deterministic.
-fn solve_at(nodes: &[FitNode], alpha: f64) -> (f64, f64, f64) {
-    let sp = specular(alpha);
+fn solve_at(nodes: &[FitNode], (ndf, masking): (NdfKind, Masking), alpha: f64) -> (f64, f64, f64) {
+    let sp = specular(ndf, masking, alpha);
     let parts: Vec<[f64; 8]> = nodes
         .par_chunks(2048)
         .map(|ch| {
@@ -460,6 +465,49 @@ pub const FIT_ALPHA_RANGE: [f64; 2] = [0.005, 1.0];
 /// squares by a 40-point search in ln α over [`FIT_ALPHA_RANGE`] and golden-section
 /// refinement to |Δ ln α| < 1e-10. `None` if no node is measured.
 pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
+    fit_microfacet_lambert(m, c, stride, NdfKind::Ggx)
+}
+
+/// As [`fit_ggx_lambert`] with the Beckmann NDF
+/// `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25; Cook & Torrance 1982's
+/// distribution with m = α) and its Smith G2 (height-correlated).
+pub fn fit_beckmann_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
+    fit_microfacet_lambert(m, c, stride, NdfKind::Beckmann)
+}
+
+/// As [`fit_ggx_lambert`] with Cook & Torrance's (1982) model: the Beckmann NDF (their D
+/// with m = α, eq. 12 up to the form's π/4, see the README's conventions) and the V-groove
+/// masking G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h)) (their eq. 6).
+pub fn fit_cook_torrance_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
+    fit_model_lambert(m, c, stride, NdfKind::Beckmann, Masking::VGroove)
+}
+
+/// The fits the `measured` command accepts (`--fit`): name, NDF, masking.
+pub const FIT_MODELS: [(&str, NdfKind, Masking); 3] = [
+    ("ggx", NdfKind::Ggx, Masking::SmithHeightCorrelated),
+    (
+        "beckmann",
+        NdfKind::Beckmann,
+        Masking::SmithHeightCorrelated,
+    ),
+    ("cook-torrance", NdfKind::Beckmann, Masking::VGroove),
+];
+
+/// The fit of [`fit_ggx_lambert`] with the NDF `ndf` (GGX or Beckmann: any NDF with a
+/// Smith G2 works, these two have closed-form Λ).
+pub fn fit_microfacet_lambert(m: &Merl, c: usize, stride: [usize; 2], ndf: NdfKind) -> Option<Fit> {
+    fit_model_lambert(m, c, stride, ndf, Masking::SmithHeightCorrelated)
+}
+
+/// The fit of [`fit_ggx_lambert`] with any NDF and masking term.
+pub fn fit_model_lambert(
+    m: &Merl,
+    c: usize,
+    stride: [usize; 2],
+    ndf: NdfKind,
+    masking: Masking,
+) -> Option<Fit> {
+    let model_kind = (ndf, masking);
     let mut nodes = Vec::new();
     for i in 0..90 {
         for j in (0..90).step_by(stride[0].max(1)) {
@@ -498,7 +546,10 @@ pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
     let grid: Vec<f64> = (0..n)
         .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
         .collect();
-    let js: Vec<f64> = grid.iter().map(|&g| solve_at(&nodes, g.exp()).0).collect();
+    let js: Vec<f64> = grid
+        .iter()
+        .map(|&g| solve_at(&nodes, model_kind, g.exp()).0)
+        .collect();
     let best = (0..n)
         .min_by(|&a, &b| js[a].total_cmp(&js[b]))
         .expect("grid is not empty");
@@ -506,33 +557,33 @@ pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
     let g = (5f64.sqrt() - 1.0) / 2.0;
     let mut x1 = b - g * (b - a);
     let mut x2 = a + g * (b - a);
-    let mut f1 = solve_at(&nodes, x1.exp()).0;
-    let mut f2 = solve_at(&nodes, x2.exp()).0;
+    let mut f1 = solve_at(&nodes, model_kind, x1.exp()).0;
+    let mut f2 = solve_at(&nodes, model_kind, x2.exp()).0;
     while b - a > 1e-10 {
         if f1 <= f2 {
             b = x2;
             x2 = x1;
             f2 = f1;
             x1 = b - g * (b - a);
-            f1 = solve_at(&nodes, x1.exp()).0;
+            f1 = solve_at(&nodes, model_kind, x1.exp()).0;
         } else {
             a = x1;
             x1 = x2;
             f1 = f2;
             x2 = a + g * (b - a);
-            f2 = solve_at(&nodes, x2.exp()).0;
+            f2 = solve_at(&nodes, model_kind, x2.exp()).0;
         }
     }
     let mut la = 0.5 * (a + b);
-    if js[best] < solve_at(&nodes, la.exp()).0 {
+    if js[best] < solve_at(&nodes, model_kind, la.exp()).0 {
         la = grid[best];
     }
     let alpha = la.exp();
-    let (jmin, kd, f0) = solve_at(&nodes, alpha);
+    let (jmin, kd, f0) = solve_at(&nodes, model_kind, alpha);
     let model = Brdf {
         specular: Some(Specular {
             fresnel: Fresnel::Schlick { f0 },
-            ..specular(alpha)
+            ..specular(ndf, masking, alpha)
         }),
         diffuse_weight: kd,
     };
@@ -543,6 +594,8 @@ pub fn fit_ggx_lambert(m: &Merl, c: usize, stride: [usize; 2]) -> Option<Fit> {
         max_abs = max_abs.max((model.eval(nd.wo, nd.wi) - nd.y).abs());
     }
     Some(Fit {
+        ndf: ndf.name(),
+        masking: masking.name(),
         kd,
         f0,
         alpha,

@@ -18,7 +18,7 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 pub fn inputs(table: &PresetTable) -> Value {
     let spec = &table.spec;
     let m = &spec.model;
-    json!({
+    let mut v = json!({
         "kind": spec.kind.name(),
         "model": {
             "ndf": m.ndf.map(|n| n.name()),
@@ -39,7 +39,11 @@ pub fn inputs(table: &PresetTable) -> Value {
         "tolerance": spec.tolerance,
         "scale": table.scale,
         "layout_3d": table.layout_3d,
-    })
+    });
+    if let Some(c) = &m.classic {
+        v["model"]["classic"] = json!(c);
+    }
+    v
 }
 
 /// `sha256:<hex>` of the canonical inputs and brdfbake's version.
@@ -63,6 +67,7 @@ fn quantity_name(a: &Axis) -> String {
         Quantity::Cosine => "cosine".into(),
         Quantity::Roughness(q) => format!("roughness:{}", q.name()),
         Quantity::Fresnel(q) => format!("fresnel:{}", q.name()),
+        Quantity::Anisotropy => "anisotropy".into(),
     }
 }
 
@@ -70,7 +75,7 @@ fn texture_axis(k: usize) -> &'static str {
     ["u", "v", "w (slice)"][k]
 }
 
-fn axis_json(k: usize, a: &Axis) -> Value {
+pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
     let [lo, hi] = a.range;
     let (texel, remap) = match a.convention {
         Convention::Centers => (
@@ -128,11 +133,17 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             crate::table::energy::reconstruction(spec)
         }
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+            crate::table::classic::reconstruction(spec)
+        }
     }
 }
 
 /// The `model` object.
 fn model_json(spec: &TableSpec) -> Value {
+    if spec.kind.is_classic() {
+        return crate::table::classic::model_json(spec);
+    }
     let m = &spec.model;
     let ndf = m.ndf.map(|n| {
         json!({
@@ -209,6 +220,9 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
             _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
         },
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+            crate::table::classic::METHOD.into()
+        }
         TableKind::DielectricBtdf => "nested adaptive Gauss-Kronrod (G7/K15) over the micro-normal h: phi in [0, pi] (split at pi/2, doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30), with panel boundaries at the reflected direction's horizon and at the critical angle (eta < 1); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
         TableKind::Albedo
         | TableKind::AlbedoAvg
@@ -321,6 +335,12 @@ pub fn header_attributes(preset: &str, table: &PresetTable, lut: &Lut) -> Vec<(S
 /// One-line model description, e.g. `ggx / smith-height-correlated / fresnel none`.
 pub fn model_summary(spec: &TableSpec) -> String {
     let m = &spec.model;
+    if let Some(c) = &m.classic {
+        return format!(
+            "classic {}",
+            serde_json::to_string(c).expect("serializable")
+        );
+    }
     let mut s = format!(
         "{} / {} / fresnel {}",
         m.ndf.map_or("no specular", |n| n.name()),

@@ -178,6 +178,8 @@ struct RawModel {
     fresnel: Option<Fresnel>,
     #[serde(default)]
     diffuse: Option<f64>,
+    #[serde(default)]
+    classic: Option<crate::table::classic::ClassicModel>,
 }
 
 #[derive(Deserialize, Default)]
@@ -192,6 +194,7 @@ struct RawAxes {
     n_dot_v: Option<RawAxis>,
     roughness: Option<RawAxis>,
     fresnel: Option<RawAxis>,
+    anisotropy: Option<RawAxis>,
 }
 
 impl RawAxes {
@@ -206,6 +209,7 @@ impl RawAxes {
             "n_dot_v" => self.n_dot_v.take(),
             "roughness" => self.roughness.take(),
             "fresnel" => self.fresnel.take(),
+            "anisotropy" => self.anisotropy.take(),
             _ => None,
         }
     }
@@ -222,6 +226,7 @@ impl RawAxes {
             ("n_dot_v", &self.n_dot_v),
             ("roughness", &self.roughness),
             ("fresnel", &self.fresnel),
+            ("anisotropy", &self.anisotropy),
         ];
         for (n, a) in all {
             if a.is_some() {
@@ -500,6 +505,9 @@ fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
             if let Some(f) = t.get("model").and_then(|m| m.get("fresnel")) {
                 need(f, &format!("tables[{i}].model.fresnel"))?;
             }
+            if let Some(c) = t.get("model").and_then(|m| m.get("classic")) {
+                need(c, &format!("tables[{i}].model.classic"))?;
+            }
         }
     }
     Ok(())
@@ -555,6 +563,7 @@ fn table_spec(
             masking: Some(Masking::VGroove),
             fresnel: None,
             diffuse: None,
+            classic: None,
         },
         None => {
             return Err((
@@ -568,6 +577,7 @@ fn table_spec(
         (None, TableKind::Ndf) => Masking::None,
         (None, TableKind::G1) => Masking::SmithSeparable,
         (None, TableKind::Vgroove) => Masking::VGroove,
+        (None, k) if k.is_classic() => Masking::None,
         (None, _) => {
             return Err((
                 "model.masking".into(),
@@ -589,6 +599,7 @@ fn table_spec(
         masking,
         fresnel: model.fresnel.unwrap_or(Fresnel::None),
         diffuse_weight: model.diffuse.unwrap_or(0.0),
+        classic: model.classic,
     };
     let mut out_axes = Vec::new();
     for &an in kind.axis_names() {
@@ -604,6 +615,16 @@ fn table_spec(
         })?;
         let is_rough = an == "roughness";
         let quantity = match (an, raw.quantity) {
+            ("anisotropy", None) => Quantity::Anisotropy,
+            ("anisotropy", Some(_)) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    format!(
+                        "the anisotropy axis takes no quantity: its coordinate is the anisotropy a in [0, 1] ({})",
+                        crate::table::classic::ANISOTROPY_MAPPING
+                    ),
+                ))
+            }
             ("roughness", Some(RawQuantity::Roughness(q))) => Quantity::Roughness(q),
             ("fresnel", Some(RawQuantity::Fresnel(q))) => Quantity::Fresnel(q),
             ("fresnel", _) => {

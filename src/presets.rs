@@ -35,6 +35,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "sheen-charlie",
         include_str!("../presets/sheen-charlie.json"),
     ),
+    (
+        "classic-albedo",
+        include_str!("../presets/classic-albedo.json"),
+    ),
 ];
 
 #[cfg(test)]

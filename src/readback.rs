@@ -154,13 +154,19 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 meta::SCHEMA
             )));
         }
-        let table = table_from_sidecar(&v)
-            .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
-        rb.hash_matches =
-            Some(v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)));
-        rb.preset = v.get("preset").and_then(Value::as_str).map(String::from);
-        rb.scale = table.scale;
-        rb.table = Some(table);
+        // `measured --out` tables have no preset table to rebuild (nor an input hash)
+        let measured = v.pointer("/table/kind").and_then(Value::as_str)
+            == Some(crate::cli::MEASURED_TABLE_KIND);
+        if !measured {
+            let table = table_from_sidecar(&v)
+                .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
+            rb.hash_matches = Some(
+                v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)),
+            );
+            rb.preset = v.get("preset").and_then(Value::as_str).map(String::from);
+            rb.scale = table.scale;
+            rb.table = Some(table);
+        }
         rb.sidecar = Some(v);
         rb.sidecar_path = Some(sp.clone());
     }
@@ -220,10 +226,15 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(n) = get(&["model", "ndf", "name"]) {
         model.insert("ndf".into(), n.clone());
     }
-    model.insert(
-        "masking".into(),
-        need(&["model", "masking", "name"])?.clone(),
-    );
+    if let Some(c) = get(&["model", "classic", "parameters"]) {
+        // a classic table: the classic model is the model, there is no masking term
+        model.insert("classic".into(), c.clone());
+    } else {
+        model.insert(
+            "masking".into(),
+            need(&["model", "masking", "name"])?.clone(),
+        );
+    }
     if let Some(f) = get(&["model", "fresnel", "parameters"]) {
         model.insert("fresnel".into(), f.clone());
     }
@@ -310,6 +321,8 @@ fn parse_axis_attribute(s: &str) -> Option<Axis> {
     }
     let quantity = if w[1] == "cosine" {
         Quantity::Cosine
+    } else if w[1] == "anisotropy" {
+        Quantity::Anisotropy
     } else if let Some(q) = w[1].strip_prefix("fresnel:") {
         Quantity::Fresnel(crate::model::FresnelQuantity::from_name(q)?)
     } else {
@@ -721,6 +734,9 @@ pub fn exact_at(
         TableKind::Dfg => dfg::texel_fn(&spec),
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             crate::table::energy::texel_fn(&spec)
+        }
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+            crate::table::classic::texel_fn(&spec)
         }
     };
     let r = f([0, 0, 0]);

@@ -80,6 +80,7 @@ fn model(ndf: Option<NdfKind>, masking: Masking) -> ModelSpec {
         masking,
         fresnel: Fresnel::None,
         diffuse_weight: 0.0,
+        classic: None,
     }
 }
 

@@ -626,6 +626,82 @@ const ENV: i32 = 1;
 /// Each fixture in `tests/bad_input/`, the exit code and what stderr must contain (the field
 /// path and/or what is accepted). The message must also name the file.
 const FIXTURES: &[(&str, i32, &[&str])] = &[
+    // classic-albedo and classic-albedo-aniso tables (tests/classic_tables.rs)
+    (
+        "classic-missing-model.json",
+        INPUT,
+        &[
+            "tables[0]",
+            "model.classic is required",
+            "ward-gmd, ashikhmin-shirley",
+        ],
+    ),
+    (
+        "classic-with-ndf.json",
+        INPUT,
+        &["tables[0]", "model.ndf must be omitted", "classic-albedo"],
+    ),
+    (
+        "classic-ward-exponent.json",
+        INPUT,
+        &[
+            "axes.roughness.quantity must be \"alpha\"",
+            "ward",
+            "got \"exponent\"",
+        ],
+    ),
+    (
+        "classic-aniso-phong.json",
+        INPUT,
+        &[
+            "needs an anisotropic model",
+            "ward-gmd or ashikhmin-shirley",
+            "modified-phong",
+        ],
+    ),
+    (
+        "classic-unknown-type.json",
+        INPUT,
+        &[
+            "tables[0].model.classic.type",
+            "torrance-sparrow",
+            "`lafortune`",
+        ],
+    ),
+    (
+        "classic-anisotropy-range.json",
+        INPUT,
+        &["axes.anisotropy.range must lie within [0, 1]", "[0, 2]"],
+    ),
+    (
+        "classic-anisotropy-quantity.json",
+        INPUT,
+        &["tables[0].axes.anisotropy.quantity", "takes no quantity"],
+    ),
+    (
+        "classic-exponent-negative.json",
+        INPUT,
+        &[
+            "axes.roughness: texel 0 is at -1",
+            "[0, 100000]",
+            "ashikhmin-shirley",
+        ],
+    ),
+    (
+        "classic-on-albedo.json",
+        INPUT,
+        &["model.classic applies to classic-albedo", "not albedo"],
+    ),
+    (
+        "classic-weight-above-1.json",
+        INPUT,
+        &["model.classic.rho_s must be a weight in [0, 1]", "1.5"],
+    ),
+    (
+        "classic-lafortune-cx-cy.json",
+        INPUT,
+        &["cx (-1.2) and cy (-0.8) must be equal", "classic-albedo"],
+    ),
     (
         "invalid-json.json",
         INPUT,

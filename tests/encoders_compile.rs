@@ -53,6 +53,7 @@ fn spec(name: &str, kind: TableKind, axes: Vec<Axis>) -> TableSpec {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            classic: None,
         },
         axes,
         dfg_layout: None,

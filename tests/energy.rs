@@ -39,6 +39,7 @@ fn spec(kind: TableKind, masking: Masking, fresnel: Fresnel, axes: Vec<Axis>) ->
             masking,
             fresnel,
             diffuse_weight: 0.0,
+            classic: None,
         },
         axes,
         dfg_layout: None,

@@ -74,6 +74,7 @@ fn filament_dfg_table_matches_adaptive_at_every_texel() {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            classic: None,
         },
         axes: axes.clone(),
         dfg_layout: Some(DfgLayout::Filament),

@@ -212,6 +212,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             masking,
             fresnel,
             diffuse_weight: 0.0,
+            classic: None,
         },
         axes,
         dfg_layout: layout,

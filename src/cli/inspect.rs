@@ -28,6 +28,9 @@ fn axis_line(a: &crate::lut::Axis) -> String {
         crate::lut::Quantity::Cosine => "cosine".to_string(),
         crate::lut::Quantity::Roughness(q) => format!("roughness ({}: {})", q.name(), q.mapping()),
         crate::lut::Quantity::Fresnel(q) => format!("fresnel ({}: {})", q.name(), q.mapping()),
+        crate::lut::Quantity::Anisotropy => {
+            format!("anisotropy ({})", crate::table::classic::ANISOTROPY_MAPPING)
+        }
     };
     format!(
         "{} — {q}, {} texels over [{}, {}], {}",

@@ -26,7 +26,7 @@ pub fn run(_: ListArgs) -> Result<(), CliError> {
         println!("  {:<20} {}", p.name, tables.join(", "));
     }
     println!("\nTable kinds:");
-    for k in TableKind::ALL {
+    for k in TableKind::ALL.into_iter().chain(TableKind::CLASSIC) {
         println!(
             "  {:<12} axes {:<40} {}",
             k.name(),

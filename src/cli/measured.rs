@@ -1,8 +1,10 @@
 //! `brdfbake measured FILE`: a measured BRDF (MERL binary format): what the file holds,
-//! its directional albedo per channel, and a GGX + Lambert fit per channel with its error.
+//! its directional albedo per channel, and GGX + Lambert and Beckmann + Lambert fits per
+//! channel with their errors.
 
 use super::CliError;
-use crate::merl::{albedo_table, fit_ggx_lambert, Merl};
+use crate::merl::{albedo_table, fit_model_lambert, Merl, FIT_MODELS};
+use crate::model::{Masking, NdfKind};
 use serde_json::json;
 use std::sync::Arc;
 
@@ -17,9 +19,16 @@ pub struct MeasuredArgs {
     /// used on measured data, see `merl::MEASURED_TOLERANCE_FLOOR`).
     #[arg(long, default_value_t = 1e-3)]
     pub tolerance: f64,
-    /// Skip the GGX + Lambert fit.
+    /// Skip the fits.
     #[arg(long)]
     pub no_fit: bool,
+    /// The microfacet models to fit (each + Lambert, Schlick F0, per channel), comma-separated:
+    /// ggx, beckmann (height-correlated Smith G2), cook-torrance (Beckmann, V-groove G).
+    #[arg(long, default_value = "ggx,beckmann")]
+    pub fit: String,
+    /// Also write the albedo as a table: DIR/<stem>-albedo.exr and its sidecar .json.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<std::path::PathBuf>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
@@ -42,17 +51,64 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             a.tolerance
         )));
     }
+    let mut ndfs: Vec<(&str, NdfKind, Masking)> = Vec::new();
+    for part in a.fit.split(',').map(str::trim) {
+        let n = FIT_MODELS.iter().find(|n| n.0 == part).ok_or_else(|| {
+            CliError::input(format!(
+                "--fit: unknown model {part:?} (accepted: {})",
+                FIT_MODELS.map(|n| n.0).join(", ")
+            ))
+        })?;
+        if !ndfs.contains(n) {
+            ndfs.push(*n);
+        }
+    }
     let m = Merl::read(&a.file).map_err(|e| CliError {
         code: e.exit_code(),
         msg: e.to_string(),
     })?;
     let m = Arc::new(m);
     let table = albedo_table(&m, a.albedo_size, a.tolerance);
-    let fits: Vec<_> = if a.no_fit {
+    // one list of per-channel fits per NDF, in the order asked
+    let all_fits: Vec<(&str, Vec<_>)> = if a.no_fit {
         Vec::new()
     } else {
-        (0..3).map(|c| fit_ggx_lambert(&m, c, FIT_STRIDE)).collect()
+        ndfs.iter()
+            .map(|&(name, n, mk)| {
+                (
+                    name,
+                    (0..3)
+                        .map(|c| fit_model_lambert(&m, c, FIT_STRIDE, n, mk))
+                        .collect::<Vec<_>>(),
+                )
+            })
+            .collect()
     };
+    let fits_of = |n: &str| {
+        all_fits
+            .iter()
+            .find(|(k, _)| *k == n)
+            .map(|(_, f)| f.clone())
+            .unwrap_or_default()
+    };
+    if let Some(dir) = &a.out {
+        let named: Vec<(&str, Vec<_>)> = all_fits.iter().map(|(n, f)| (*n, f.clone())).collect();
+        let files = super::measured_table::files(&a.file, &m, &table, a.tolerance, &named, dir)
+            .map_err(CliError::input)?;
+        std::fs::create_dir_all(dir).map_err(|e| {
+            CliError::env(format!(
+                "cannot create output directory {}: {e}",
+                dir.display()
+            ))
+        })?;
+        crate::write::write_all_atomic(&files).map_err(|e| CliError::env(e.to_string()))?;
+        for (p, _) in &files {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    let fits = fits_of("ggx");
+    let fits_beckmann = fits_of("beckmann");
+    let fits_ct = fits_of("cook-torrance");
     let names = ["R", "G", "B"];
     if a.json {
         let doc = json!({
@@ -68,6 +124,18 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
                 "weights": "cos_i cos_o, nodes above the horizon, measured only",
                 "stride_theta_d_phi_d": FIT_STRIDE,
                 "channels": fits.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
+            },
+            "fit_beckmann": {
+                "model": "kd/pi + D_Beckmann(alpha) G2_smith_height_correlated F_schlick(f0) / (4 cos_i cos_o), D = exp(-tan^2/alpha^2)/(pi alpha^2 cos^4)",
+                "weights": "cos_i cos_o, nodes above the horizon, measured only",
+                "stride_theta_d_phi_d": FIT_STRIDE,
+                "channels": fits_beckmann.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
+            },
+            "fit_cook_torrance": {
+                "model": "kd/pi + D_Beckmann(alpha) G_V-groove F_schlick(f0) / (4 cos_i cos_o), G = min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) (Cook & Torrance 1982)",
+                "weights": "cos_i cos_o, nodes above the horizon, measured only",
+                "stride_theta_d_phi_d": FIT_STRIDE,
+                "channels": fits_ct.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
             },
         });
         println!(
@@ -94,10 +162,15 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             r.error.iter().cloned().fold(0.0, f64::max)
         );
     }
-    for (f, n) in fits.iter().zip(names) {
+    for (f, n) in all_fits.iter().flat_map(|(_, fs)| fs.iter().zip(names)) {
         match f {
             Some(f) => println!(
-                "  fit {n}: GGX + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
+                "  fit {n}: {} + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
+                match (f.ndf, f.masking) {
+                    ("ggx", _) => "GGX",
+                    (_, "v-groove") => "Cook-Torrance (Beckmann, V-groove G)",
+                    _ => "Beckmann",
+                },
                 f.kd,
                 f.f0,
                 f.alpha,

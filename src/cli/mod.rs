@@ -8,6 +8,9 @@ mod inspect;
 mod laws;
 mod list;
 mod measured;
+mod measured_table;
+/// The sidecar kind of the tables `measured --out` writes.
+pub const MEASURED_TABLE_KIND: &str = measured_table::KIND;
 mod probe;
 mod report;
 mod verify;

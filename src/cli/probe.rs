@@ -64,6 +64,14 @@ pub(super) fn parse_at(s: &str, names: &[&str]) -> Result<Vec<f64>, CliError> {
 pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     let rb = super::inspect::read(&a.file)?;
     let table = rb.table.as_ref().ok_or_else(|| {
+        if rb.sidecar.is_some() {
+            return CliError::input(format!(
+                "{}: a table of `measured --out` (kind {}): there is no exact value to probe against \
+                 (the data are measured); `inspect` shows it",
+                a.file.display(),
+                super::MEASURED_TABLE_KIND
+            ));
+        }
         CliError::input(format!(
             "{}: probe needs the JSON sidecar next to the texture (it says what the axes are)",
             a.file.display()

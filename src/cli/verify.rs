@@ -114,7 +114,16 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     if matches!(ext, "exr" | "ktx2") || schema.as_deref() == Some(crate::meta::SCHEMA) {
         let rb = super::inspect::read(p)?;
+        let has_sidecar = rb.sidecar.is_some();
         let table = rb.table.ok_or_else(|| {
+            if has_sidecar {
+                return CliError::input(format!(
+                    "{}: a table of `measured --out` (kind {}): nothing to recompute it from but the \
+                     measured file; run `brdfbake measured` again",
+                    p.display(),
+                    super::MEASURED_TABLE_KIND
+                ));
+            }
             CliError::input(format!(
                 "{}: verify needs the JSON sidecar next to the texture (it says what to recompute)",
                 p.display()

@@ -352,6 +352,9 @@ pub(crate) fn quantity_name(a: &Axis) -> String {
         Quantity::Cosine => "cosine".into(),
         Quantity::Roughness(q) => format!("roughness:{} ({})", q.name(), q.mapping()),
         Quantity::Fresnel(q) => format!("fresnel:{} ({})", q.name(), q.mapping()),
+        Quantity::Anisotropy => {
+            format!("anisotropy ({})", crate::table::classic::ANISOTROPY_MAPPING)
+        }
     }
 }
 

@@ -321,7 +321,7 @@ impl Reflectance for AshikhminShirley {
         self.nu == self.nv
     }
     fn lobe_width(&self) -> f64 {
-        width_of_exponent(self.nu.min(self.nv))
+        width_of_exponent(self.nu.max(self.nv))
     }
 }
 

@@ -21,14 +21,20 @@ pub enum RoughnessQuantity {
     /// Blinn-Phong exponent s, α = √(2/(s + 2)) (Walter et al. 2007, §5.2). Only for the
     /// Blinn-Phong NDF.
     BlinnPhongExponent,
+    /// The lobe exponent of a classic model (Phong n, Blinn-Phong s, Ashikhmin–Shirley n,
+    /// Lafortune n) taken as is by `classic-albedo` tables; the α listed for it is the
+    /// Beckmann-equivalent width √(2/(n + 2)) (Walter et al. 2007, §5.2), for information.
+    /// No NDF takes it.
+    Exponent,
 }
 
 impl RoughnessQuantity {
-    pub const ALL: [RoughnessQuantity; 4] = [
+    pub const ALL: [RoughnessQuantity; 5] = [
         RoughnessQuantity::Alpha,
         RoughnessQuantity::Perceptual,
         RoughnessQuantity::CookTorranceM,
         RoughnessQuantity::BlinnPhongExponent,
+        RoughnessQuantity::Exponent,
     ];
 
     pub fn name(self) -> &'static str {
@@ -37,6 +43,7 @@ impl RoughnessQuantity {
             RoughnessQuantity::Perceptual => "perceptual",
             RoughnessQuantity::CookTorranceM => "cook-torrance-m",
             RoughnessQuantity::BlinnPhongExponent => "blinn-phong-exponent",
+            RoughnessQuantity::Exponent => "exponent",
         }
     }
 
@@ -46,6 +53,9 @@ impl RoughnessQuantity {
             RoughnessQuantity::Perceptual => "alpha = coordinate^2",
             RoughnessQuantity::CookTorranceM => "alpha = m = coordinate",
             RoughnessQuantity::BlinnPhongExponent => "alpha = sqrt(2/(coordinate + 2))",
+            RoughnessQuantity::Exponent => {
+                "exponent = coordinate (a classic model's lobe exponent); alpha = sqrt(2/(coordinate + 2)) is its Beckmann-equivalent width, for information"
+            }
         }
     }
 
@@ -57,6 +67,7 @@ impl RoughnessQuantity {
                 matches!(ndf, NdfKind::Beckmann | NdfKind::Gaussian)
             }
             RoughnessQuantity::BlinnPhongExponent => ndf == NdfKind::BlinnPhong,
+            RoughnessQuantity::Exponent => false,
         }
     }
 
@@ -65,7 +76,9 @@ impl RoughnessQuantity {
         match self {
             RoughnessQuantity::Alpha | RoughnessQuantity::CookTorranceM => value,
             RoughnessQuantity::Perceptual => value * value,
-            RoughnessQuantity::BlinnPhongExponent => alpha_from_exponent(value),
+            RoughnessQuantity::BlinnPhongExponent | RoughnessQuantity::Exponent => {
+                alpha_from_exponent(value)
+            }
         }
     }
 }

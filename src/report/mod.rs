@@ -3,6 +3,7 @@
 //! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
 //! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
 
+pub mod classic;
 pub mod convergence;
 pub mod filament;
 mod svg;
@@ -43,7 +44,9 @@ pub fn esc(s: &str) -> String {
 fn albedo_of(t: &ReportTable, mu: f64, r: f64) -> Option<f64> {
     let v = t.lut.lookup(&[mu, r]);
     match (t.spec.kind, t.spec.dfg_layout) {
-        (TableKind::Albedo, _) | (TableKind::KullaConty, _) => Some(v[0]),
+        (TableKind::Albedo, _) | (TableKind::KullaConty, _) | (TableKind::ClassicAlbedo, _) => {
+            Some(v[0])
+        }
         (TableKind::Dfg, Some(DfgLayout::Karis)) => Some(v[0] + v[1]),
         (TableKind::Dfg, _) => Some(v[1]),
         _ => None,
@@ -100,7 +103,7 @@ fn table_section(t: &ReportTable, out: &mut String) {
     let _ = writeln!(out, "</div>");
     let is_e = matches!(
         spec.kind,
-        TableKind::Albedo | TableKind::Dfg | TableKind::KullaConty
+        TableKind::Albedo | TableKind::Dfg | TableKind::KullaConty | TableKind::ClassicAlbedo
     );
     if is_e {
         let picks = roughness_picks(spec);
@@ -210,7 +213,7 @@ fn karis_section(t: &ReportTable, out: &mut String) {
     let ra = lut.axes.last().expect("axis");
     let perceptual = |coord: f64| match ra.quantity {
         Quantity::Roughness(q) => q.to_alpha(coord).sqrt(),
-        Quantity::Cosine | Quantity::Fresnel(_) => coord,
+        Quantity::Cosine | Quantity::Fresnel(_) | Quantity::Anisotropy => coord,
     };
     let ab = |mu: f64, r: f64| {
         let v = lut.lookup(&[mu, r]);
@@ -367,6 +370,7 @@ pub fn html(tables: &[ReportTable], filament: Option<(&str, &filament::Compariso
     for t in tables {
         table_section(t, &mut out);
     }
+    classic::section(tables, &mut out);
     convergence::section(&mut out);
     out.push_str("</body></html>\n");
     out

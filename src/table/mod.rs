@@ -6,6 +6,7 @@
 //! output is bit-identical for any thread count.
 
 pub mod albedo;
+pub mod classic;
 pub mod dfg;
 pub mod dielectric;
 pub mod energy;
@@ -88,6 +89,7 @@ pub fn bake_until(
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             energy::texel_fn(spec)
         }
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
     };
     let dims = [
         spec.axes.first().map_or(1, |a| a.size),
@@ -199,5 +201,6 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             energy::channels(spec)
         }
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
     }
 }

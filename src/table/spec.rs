@@ -30,6 +30,12 @@ pub enum TableKind {
     /// Rough dielectric interface (GGX, Walter et al. 2007): reflection and transmission
     /// albedo R, T over (cos θv; roughness; η), 3D.
     DielectricBtdf,
+    /// Directional albedo of a classic analytic model (Phong, Blinn-Phong, Ward,
+    /// Ashikhmin–Shirley, Lafortune): E(cos θv; exponent or α), 2D (`table::classic`).
+    ClassicAlbedo,
+    /// Directional albedo of an anisotropic classic model (Ward, Ashikhmin–Shirley) over
+    /// (cos θv; exponent or α; anisotropy), 3D, per view azimuth and azimuth-averaged.
+    ClassicAlbedoAniso,
 }
 
 impl TableKind {
@@ -46,6 +52,15 @@ impl TableKind {
         TableKind::DielectricBtdf,
     ];
 
+    /// The kinds of the classic analytic models (`table::classic`); not in [`Self::ALL`],
+    /// which lists the microfacet kinds a [`ModelSpec`] without `classic` bakes.
+    pub const CLASSIC: [TableKind; 2] = [TableKind::ClassicAlbedo, TableKind::ClassicAlbedoAniso];
+
+    /// Whether this is one of [`Self::CLASSIC`].
+    pub fn is_classic(self) -> bool {
+        Self::CLASSIC.contains(&self)
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             TableKind::Ndf => "ndf",
@@ -58,6 +73,8 @@ impl TableKind {
             TableKind::KullaConty => "kulla-conty",
             TableKind::AlbedoFresnel => "albedo-fresnel",
             TableKind::DielectricBtdf => "dielectric-btdf",
+            TableKind::ClassicAlbedo => "classic-albedo",
+            TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
         }
     }
 
@@ -74,6 +91,8 @@ impl TableKind {
             TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 &["cos_theta_v", "roughness", "fresnel"]
             }
+            TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
+            TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
         }
     }
 
@@ -96,6 +115,12 @@ impl TableKind {
             }
             TableKind::DielectricBtdf => {
                 "rough dielectric interface: reflection and transmission albedo R, T(cos theta_v; roughness; eta)"
+            }
+            TableKind::ClassicAlbedo => {
+                "directional albedo E(cos theta_v; exponent or alpha) of a classic model (phong, blinn-phong, ward, ashikhmin-shirley, lafortune)"
+            }
+            TableKind::ClassicAlbedoAniso => {
+                "directional albedo E(cos theta_v; exponent or alpha; anisotropy) of ward or ashikhmin-shirley: view azimuth average, at 0 and at 90 degrees"
             }
         }
     }
@@ -129,6 +154,10 @@ pub struct ModelSpec {
     pub fresnel: Fresnel,
     /// Weight of the Lambertian lobe w_d/π (0 = none).
     pub diffuse_weight: f64,
+    /// The classic analytic model of a `classic-albedo` / `classic-albedo-aniso` table
+    /// (then `ndf` is `None`, `masking` none, `fresnel` none, `diffuse_weight` 0: the
+    /// classic model carries its own weights); `None` for every other kind.
+    pub classic: Option<super::classic::ClassicModel>,
 }
 
 impl ModelSpec {
@@ -219,6 +248,8 @@ impl TableSpec {
                             | (TableKind::Dfg, _)
                             | (TableKind::KullaConty, _)
                             | (TableKind::AlbedoFresnel, _)
+                            | (TableKind::ClassicAlbedo, _)
+                            | (TableKind::ClassicAlbedoAniso, _)
                             | (TableKind::Vgroove, "n_dot_h")
                     );
                     if !zero_ok && ax.coord(0) <= 0.0 {
@@ -241,7 +272,18 @@ impl TableSpec {
                             .map_err(|e| format!("{f}: texel {i}: {e}"))?;
                     }
                 }
+                Quantity::Anisotropy => {
+                    if ax.name != "anisotropy" || lo < 0.0 || hi > 1.0 {
+                        return Err(format!(
+                            "{f}.range must lie within [0, 1] (an anisotropy: 0 isotropic, 1 alpha_x/alpha_y = 10), got [{lo}, {hi}]"
+                        ));
+                    }
+                }
                 Quantity::Roughness(q) => {
+                    if let Some(c) = &self.model.classic {
+                        super::classic::check_parameter_axis(c, q, ax, &f)?;
+                        continue;
+                    }
                     let ndf = self.model.ndf;
                     if let Some(n) = ndf {
                         if !q.applies_to(n) {
@@ -295,6 +337,15 @@ impl TableSpec {
             ));
         }
         let m = &self.model;
+        if kind.is_classic() {
+            return super::classic::validate(self);
+        }
+        if m.classic.is_some() {
+            return Err(format!(
+                "model.classic applies to classic-albedo and classic-albedo-aniso tables only, not {}",
+                kind.name()
+            ));
+        }
         let need_ndf = |what: &str| -> Result<NdfKind, String> {
             m.ndf
                 .ok_or_else(|| format!("model.ndf is required for a {} table{what}", kind.name()))
@@ -390,6 +441,9 @@ impl TableSpec {
             }
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 super::energy::validate(self)?;
+            }
+            TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+                unreachable!("validated above")
             }
         }
         if kind != TableKind::Dfg && (self.dfg_layout.is_some() || self.cloth) {
