@@ -137,6 +137,10 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::KullaConty => (albedo, 160_000.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
         K::DielectricBtdf => (20_000.0, 0.0),
+        // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
+        // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths)
+        K::ClassicAlbedo => (15_000.0, 0.0),
+        K::ClassicAlbedoAniso => (300_000.0, 0.0),
     }
 }
 

@@ -910,3 +910,33 @@ fn time_estimate_tracks_real_evaluations() {
     }
     assert!(checked >= 8, "only {checked} integrated tables checked");
 }
+
+/// Output into a pipe nobody reads (`brdfbake list | head -0`): the process ends quietly by
+/// SIGPIPE like any Unix filter, never with a panic message from `println!` on EPIPE. The
+/// pipe's read end is closed before the child starts, so every write fails: no race.
+#[test]
+fn closed_stdout_pipe_is_not_a_panic() {
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::os::unix::process::ExitStatusExt;
+    for args in [&["list"][..], &["completions", "bash"], &["--help"]] {
+        let mut fds = [0; 2];
+        // SAFETY: pipe() fills two new descriptors, which the OwnedFds below take over.
+        assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0);
+        let (r, w) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+        drop(r);
+        let out = bin()
+            .args(args)
+            .stdout(Stdio::from(w))
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert_eq!(
+            out.status.signal(),
+            Some(libc::SIGPIPE),
+            "{args:?}: {:?} {err}",
+            out.status
+        );
+    }
+}
