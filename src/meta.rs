@@ -237,6 +237,16 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         } else {
             method
         };
+    let method = if spec.kind == TableKind::Dfg
+        && (spec.cloth || crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking))
+    {
+        format!(
+            "{}. Generic path: {method}",
+            crate::integrate::dfg_kernel::METHOD
+        )
+    } else {
+        method
+    };
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
         if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }
