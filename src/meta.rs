@@ -237,9 +237,16 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         } else {
             method
         };
-    let method = if spec.kind == TableKind::Dfg
-        && (spec.cloth || crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking))
-    {
+    let kernel = match spec.kind {
+        TableKind::Dfg => {
+            spec.cloth || crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
+        }
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty => {
+            crate::table::albedo::uses_kernel(&spec.model)
+        }
+        _ => false,
+    };
+    let method = if kernel {
         format!(
             "{}. Generic path: {method}",
             crate::integrate::dfg_kernel::METHOD
