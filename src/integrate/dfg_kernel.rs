@@ -322,6 +322,8 @@ enum SheenWarp {
 
 struct SheenFill<'a> {
     col: &'a Column,
+    /// the α-independent node data of the wide-lobe warp, shared by a column's texels
+    cache: Option<&'a RefCell<SheenCache>>,
     norm: f64,
     /// 1/(2α): D = norm · (sin²θh)^k.
     k: f64,
@@ -378,40 +380,139 @@ impl Fill<1> for SheenFill<'_> {
                 half * col.dphi[i]
             }
             SheenWarp::Sqrt => {
-                let thmax = tmax.atan();
-                let cp = col.cos_phi[i];
-                let amp = (mu * mu + col.sin_v * col.sin_v * cp * cp).sqrt();
-                let d = mu / (2.0 * amp) / (2.0 * thmax);
-                let zmax = if d < 0.25 { (1.0 / d).asinh() } else { 0.0 };
-                if zmax > 0.0 {
-                    for k in 0..m {
-                        let z = zmax * 0.5 * (1.0 - xs[k]);
-                        let e = exp_poly(z);
-                        let ei = 1.0 / e;
-                        let w = (1.0 - d * 0.5 * (e - ei)).max(0.0);
-                        let dw = d * 0.5 * (e + ei);
-                        let th = thmax * w * w;
-                        let (sin_h, cos_h) = sin_cos_poly(th);
-                        // dω_h = sin θh dθh dφ, |dθh/dw| = 2 θmax w
-                        v[k] = self.value(mu, svcp, sin_h, cos_h, sin_h * sin_h)
-                            * (sin_h * 2.0 * thmax * w * dw);
+                let (norm, kk) = (self.norm, self.k);
+                match self.cache {
+                    Some(cache) => {
+                        let mut c = cache.borrow_mut();
+                        c.ensure(col, i, stride);
+                        let base = i * NMAX;
+                        for q in 0..m {
+                            let at = base + js[q];
+                            v[q] = norm * exp_poly((kk * c.ln_sin2[at]).max(-700.0)) * c.rest[at];
+                        }
+                        c.scale[i]
                     }
-                } else {
-                    for k in 0..m {
-                        let w = 0.5 * (1.0 - xs[k]);
-                        let th = thmax * w * w;
-                        let (sin_h, cos_h) = sin_cos_poly(th);
-                        v[k] = self.value(mu, svcp, sin_h, cos_h, sin_h * sin_h)
-                            * (sin_h * 2.0 * thmax * w);
+                    None => {
+                        let g = SqrtWarpPhi::new(col, i);
+                        for q in 0..m {
+                            let (l, p) = g.node(xs[q]);
+                            v[q] = norm * exp_poly((kk * l).max(-700.0)) * p;
+                        }
+                        g.scale
                     }
                 }
-                0.5 * col.dphi[i] * if zmax > 0.0 { zmax } else { 1.0 }
             }
         };
         for k in 0..m {
             out[js[k]] = v[k];
         }
         scale
+    }
+}
+
+/// The wide-lobe sheen warp at one φ node: `θh = θmax w²`, with `w = 1 − d sinh z` where the
+/// Ashikhmin visibility's horizon layer is narrow. Nothing here depends on α, so a table
+/// column can share it ([`SheenCache`]).
+struct SqrtWarpPhi {
+    mu: f64,
+    svcp: f64,
+    thmax: f64,
+    d: f64,
+    zmax: f64,
+    /// the node's inner half-length × dφ/dx
+    scale: f64,
+}
+
+impl SqrtWarpPhi {
+    fn new(col: &Column, i: usize) -> SqrtWarpPhi {
+        let mu = col.mu;
+        let cp = col.cos_phi[i];
+        let thmax = col.tmax[i].atan();
+        // Near the horizon n·l ≈ 2A(θmax − θh), A = √(cos²θv + sin²θv cos²φ), and the
+        // visibility turns over at n·l ~ n·v: a layer of width ℓ = n·v/(2A) in θh; where it
+        // is narrow (d = ℓ/(2θmax) < 1/4), w = 1 − d sinh z puts nodes into it (as tensor.rs)
+        let amp = (mu * mu + col.sin_v * col.sin_v * cp * cp).sqrt();
+        let d = mu / (2.0 * amp) / (2.0 * thmax);
+        let zmax = if d < 0.25 { (1.0 / d).asinh() } else { 0.0 };
+        SqrtWarpPhi {
+            mu,
+            svcp: col.sin_v * cp,
+            thmax,
+            d,
+            zmax,
+            scale: 0.5 * col.dphi[i] * if zmax > 0.0 { zmax } else { 1.0 },
+        }
+    }
+
+    /// At rule abscissa x: (ln sin²θh, the integrand without D: (n·l)(v·h)/(n·l + μ −
+    /// (n·l)μ) · sin θh |dθh/dx'|), so that the value is `norm·exp(k·ln sin²θh)·rest`.
+    #[inline(always)]
+    fn node(&self, x: f64) -> (f64, f64) {
+        let (w, dw) = if self.zmax > 0.0 {
+            let z = self.zmax * 0.5 * (1.0 - x);
+            let e = exp_poly(z);
+            let ei = 1.0 / e;
+            (
+                (1.0 - self.d * 0.5 * (e - ei)).max(0.0),
+                self.d * 0.5 * (e + ei),
+            )
+        } else {
+            (0.5 * (1.0 - x), 1.0)
+        };
+        let th = self.thmax * w * w;
+        let (sin_h, cos_h) = sin_cos_poly(th);
+        let mu = self.mu;
+        let vh = self.svcp * sin_h + mu * cos_h;
+        let nl = (2.0 * vh * cos_h - mu).max(0.0);
+        // dω_h = sin θh dθh dφ, |dθh/dw| = 2 θmax w
+        let rest = nl * vh / (nl + mu - nl * mu) * (sin_h * 2.0 * self.thmax * w * dw);
+        (ln_poly(sin_h * sin_h), rest)
+    }
+}
+
+/// The cloth kernel's α-independent data for one table column (one view μ), wide-lobe
+/// warp: per φ node and inner node, ln sin²θh and the integrand without D, filled level by
+/// level as texels ask for them. Each entry is a pure function of (μ, node), so sharing it
+/// changes no value: a texel computes the same bits with or without it.
+pub struct SheenCache {
+    level_stride: Vec<usize>,
+    scale: Vec<f64>,
+    ln_sin2: Vec<f64>,
+    rest: Vec<f64>,
+}
+
+impl Default for SheenCache {
+    fn default() -> Self {
+        SheenCache {
+            level_stride: vec![0; NMAX],
+            scale: vec![0.0; NMAX],
+            ln_sin2: vec![0.0; NMAX * NMAX],
+            rest: vec![0.0; NMAX * NMAX],
+        }
+    }
+}
+
+impl SheenCache {
+    /// Makes sure φ node i has every inner node of stride `stride`.
+    fn ensure(&mut self, col: &Column, i: usize, stride: usize) {
+        let have = self.level_stride[i];
+        if have != 0 && have <= stride {
+            return;
+        }
+        let r = cc_rules();
+        let g = SqrtWarpPhi::new(col, i);
+        let mask = have.wrapping_sub(1);
+        let mut j = 0;
+        while j < NMAX {
+            if have == 0 || j & mask != 0 {
+                let (l, p) = g.node(r.x[j]);
+                self.ln_sin2[i * NMAX + j] = l;
+                self.rest[i * NMAX + j] = p;
+            }
+            j += stride;
+        }
+        self.scale[i] = g.scale;
+        self.level_stride[i] = stride;
     }
 }
 
@@ -510,6 +611,17 @@ const COS_C: [f64; 13] = [
 /// adaptive integrator directly (α < 1e-4 with D > 1e-12 D_max at the lowest horizon point;
 /// see [`integrate_over_l_smooth`](super::tensor::integrate_over_l_smooth)).
 pub fn charlie_sheen(col: &Column, alpha: f64, tol: f64) -> Result<Estimate<1>, u64> {
+    charlie_sheen_shared(col, None, alpha, tol)
+}
+
+/// [`charlie_sheen`] with the column's α-independent node data shared through `cache`
+/// (which must only ever be used with this `col`): the same result, bit for bit.
+pub fn charlie_sheen_shared(
+    col: &Column,
+    cache: Option<&RefCell<SheenCache>>,
+    alpha: f64,
+    tol: f64,
+) -> Result<Estimate<1>, u64> {
     if !(col.mu > 0.0 && alpha > 0.0) {
         return Err(0);
     }
@@ -526,6 +638,7 @@ pub fn charlie_sheen(col: &Column, alpha: f64, tol: f64) -> Result<Estimate<1>, 
     };
     let k = SheenFill {
         col,
+        cache,
         norm: (2.0 + 1.0 / alpha) / (2.0 * std::f64::consts::PI),
         k: 0.5 / alpha,
         warp,

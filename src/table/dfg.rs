@@ -9,11 +9,12 @@
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
-use crate::integrate::dfg_kernel::{self, Column, Smith};
+use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
+use std::cell::RefCell;
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
@@ -107,39 +108,37 @@ pub fn split_sum_column(
     (v, e, n + spent)
 }
 
-/// [`sheen_albedo`] through the specialised cloth kernel first (see [`split_sum_column`]).
-pub fn sheen_albedo_column(alpha: f64, col: &Column, mu: f64, tol: f64) -> (f64, f64, u64) {
-    match dfg_kernel::charlie_sheen(col, alpha, tol) {
-        Ok(e) => (e.value[0], e.error[0], e.evals),
-        Err(spent) => {
-            let (v, e, n) = sheen_albedo(alpha, mu, tol);
-            (v, e, n + spent)
-        }
-    }
+/// What every texel of a dfg table needs.
+struct Ctx {
+    brdfs: Vec<crate::model::Brdf>,
+    axes: Vec<crate::lut::Axis>,
+    tol: f64,
+    layout: DfgLayout,
+    cloth: bool,
 }
 
-pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
-    let brdfs = brdfs_per_roughness(spec);
-    let axes = spec.axes.clone();
-    let tol = spec.tolerance;
-    let layout = spec.dfg_layout.expect("validated");
-    let cloth = spec.cloth;
-    // the view setup of each column, built by whichever thread needs it first (a pure
-    // function of μ, so the result does not depend on which)
-    let columns: Vec<std::sync::OnceLock<Column>> = (0..axes[0].size)
-        .map(|_| std::sync::OnceLock::new())
-        .collect();
-    Box::new(move |idx| {
-        let mu = axes[0].coord(idx[0]);
-        let col = columns[idx[0]].get_or_init(|| Column::new(mu));
-        let s = brdfs[idx[1]]
+impl Ctx {
+    fn new(spec: &TableSpec) -> Ctx {
+        Ctx {
+            brdfs: brdfs_per_roughness(spec),
+            axes: spec.axes.clone(),
+            tol: spec.tolerance,
+            layout: spec.dfg_layout.expect("validated"),
+            cloth: spec.cloth,
+        }
+    }
+
+    /// Texel (i0, j) with the view data `col` of column i0 (and its sheen `cache`).
+    fn texel(&self, j: usize, col: &Column, cache: &RefCell<SheenCache>) -> TexelResult {
+        let (mu, tol) = (col.mu(), self.tol);
+        let s = self.brdfs[j]
             .specular
             .as_ref()
             .expect("validated: dfg has an NDF");
         // each channel of the pair below is a sum/difference of the two integrals, so its
         // error bound is the sum of theirs
         let ([a, b], [ea, eb], n) = split_sum_column(s, col, mu, tol);
-        let mut r = match layout {
+        let mut r = match self.layout {
             DfgLayout::Karis => TexelResult {
                 value: vec![a, b],
                 error: vec![ea, eb],
@@ -151,13 +150,43 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
                 evals: n,
             },
         };
-        if cloth {
-            let alpha = axes[1].alpha(idx[1]).expect("roughness axis");
-            let (v, e, n) = sheen_albedo_column(alpha, col, mu, tol);
+        if self.cloth {
+            let alpha = self.axes[1].alpha(j).expect("roughness axis");
+            let (v, e, n) = match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
+                Ok(e) => (e.value[0], e.error[0], e.evals),
+                Err(spent) => {
+                    let (v, e, n) = sheen_albedo(alpha, mu, tol);
+                    (v, e, n + spent)
+                }
+            };
             r.value.push(v);
             r.error.push(e);
             r.evals += n;
         }
         r
+    }
+}
+
+/// The texels of one table column (one view μ, every roughness, in axis-1 order): the view
+/// setup ([`Column`]) and the cloth kernel's α-independent node data ([`SheenCache`]) are
+/// built once for the column and shared by its texels; each texel's value is the same, bit
+/// for bit, as computed alone ([`texel_fn`]).
+pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResult> + Sync> {
+    let ctx = Ctx::new(spec);
+    Box::new(move |i0| {
+        let col = Column::new(ctx.axes[0].coord(i0));
+        let cache = RefCell::new(SheenCache::default());
+        (0..ctx.axes[1].size)
+            .map(|j| ctx.texel(j, &col, &cache))
+            .collect()
+    })
+}
+
+/// One texel on its own (for single-point evaluations such as `readback`'s exact values).
+pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
+    let ctx = Ctx::new(spec);
+    Box::new(move |idx| {
+        let col = Column::new(ctx.axes[0].coord(idx[0]));
+        ctx.texel(idx[1], &col, &RefCell::new(SheenCache::default()))
     })
 }

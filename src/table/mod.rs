@@ -58,34 +58,48 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
         msg,
     })?;
     let channels = channels(spec);
-    let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
-        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
-            local::texel_fn(spec)
-        }
-        TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
-        TableKind::Dfg => dfg::texel_fn(spec),
-        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
-            energy::texel_fn(spec)
-        }
-    };
     let dims = [
         spec.axes.first().map_or(1, |a| a.size),
         spec.axes.get(1).map_or(1, |a| a.size),
         spec.axes.get(2).map_or(1, |a| a.size),
     ];
     let n = dims[0] * dims[1] * dims[2];
-    let results: Vec<TexelResult> = (0..n)
-        .into_par_iter()
-        .with_min_len(1)
-        .map(|i| {
-            let idx = [
-                i % dims[0],
-                (i / dims[0]) % dims[1],
-                i / (dims[0] * dims[1]),
-            ];
-            per_row(idx)
-        })
-        .collect();
+    let results: Vec<TexelResult> = if spec.kind == TableKind::Dfg {
+        // dfg tables (2D) are computed a column (one view μ, all roughnesses) per task,
+        // so that the column's view data is built once (dfg::column_fn)
+        let column = dfg::column_fn(spec);
+        let cols: Vec<Vec<TexelResult>> = (0..dims[0])
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|i0| column(i0))
+            .collect();
+        (0..n)
+            .map(|i| cols[i % dims[0]][i / dims[0]].clone())
+            .collect()
+    } else {
+        let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
+            TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
+                local::texel_fn(spec)
+            }
+            TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
+            TableKind::Dfg => unreachable!("dfg tables are baked per column above"),
+            TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+                energy::texel_fn(spec)
+            }
+        };
+        (0..n)
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|i| {
+                let idx = [
+                    i % dims[0],
+                    (i / dims[0]) % dims[1],
+                    i / (dims[0] * dims[1]),
+                ];
+                per_row(idx)
+            })
+            .collect()
+    };
     let nc = channels.len();
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
