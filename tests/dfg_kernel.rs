@@ -14,6 +14,9 @@
 //!   own relative rounding (the sheen D = exp(k·ln sin²θh) carries |k ln sin²θh|·2⁻⁵³ ≤
 //!   700·2⁻⁵³ ≈ 8e-14 before it underflows to nothing) is smaller still.
 
+// Channel loops index the value, estimate and reference arrays at once.
+#![allow(clippy::needless_range_loop)]
+
 #[path = "common/reference.rs"]
 mod reference;
 

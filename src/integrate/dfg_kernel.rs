@@ -48,6 +48,11 @@ use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 
 const NMAX: usize = (1 << MAX_LEVEL) + 1;
 
+/// fdlibm's split of ln 2 (e_exp.c: ln2HI, ln2LO): the high part has trailing zero bits, so
+/// n·LN2_HI is exact for the |n| < 2^11 used here.
+const LN2_HI: f64 = 6.931_471_803_691_238e-1;
+const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+
 /// What the kernels do, for the sidecar's `quadrature.method`.
 pub const METHOD: &str = "specialised kernels for the GGX split sum (Smith height-correlated or separable masking) and the Charlie/Ashikhmin cloth channel (src/integrate/dfg_kernel.rs): the nested Clenshaw-Curtis tensor rule of the generic fast path (same coordinates, warps, levels and error estimate) with the integrand in closed form (GGX: D (n.h) dw_h = sinh u/(pi cosh^3 u) du dphi, tan theta_h = alpha sinh u) and the per-view setup shared by a table column; a texel whose estimate does not reach the tolerance goes to the generic path";
 
@@ -256,8 +261,6 @@ fn new_nodes(x: &[f64; NMAX], stride: usize, old_stride: usize, tmp: &mut Tmp) -
 #[inline(always)]
 pub fn exp_poly(x: f64) -> f64 {
     const LOG2E: f64 = std::f64::consts::LOG2_E;
-    const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
-    const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
     // round-to-nearest by the 1.5·2^52 trick: the low mantissa bits of `big` hold n
     const SHIFT: f64 = 6_755_399_441_055_744.0;
     let big = x * LOG2E + SHIFT;
@@ -522,8 +525,6 @@ impl SheenCache {
 /// a few ulp of `f64::ln` (unit test below).
 #[inline(always)]
 pub fn ln_poly(x: f64) -> f64 {
-    const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
-    const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
     let bits = x.to_bits();
     // biased exponent as a float: its bits under 2^52, minus 2^52
     let eb = f64::from_bits((bits >> 52) | 0x4330_0000_0000_0000) - 4_503_599_627_370_496.0;

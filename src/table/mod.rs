@@ -71,7 +71,7 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
         let cols: Vec<Vec<TexelResult>> = (0..dims[0])
             .into_par_iter()
             .with_min_len(1)
-            .map(|i0| column(i0))
+            .map(&*column)
             .collect();
         (0..n)
             .map(|i| cols[i % dims[0]][i / dims[0]].clone())
