@@ -64,17 +64,16 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
         spec.axes.get(2).map_or(1, |a| a.size),
     ];
     let n = dims[0] * dims[1] * dims[2];
-    let results: Vec<TexelResult> = if spec.kind == TableKind::Dfg {
-        // dfg tables (2D) are computed a column (one view μ, all roughnesses) per task,
-        // so that the column's view data is built once (dfg::column_fn)
+    // The texel results in blocks: one block per column (axis-0 index) for dfg tables, which
+    // are computed a column (one view μ, all roughnesses) per task so that the column's view
+    // data is built once (dfg::column_fn); one block in texel order otherwise.
+    let by_column = spec.kind == TableKind::Dfg;
+    let blocks: Vec<Vec<TexelResult>> = if by_column {
         let column = dfg::column_fn(spec);
-        let cols: Vec<Vec<TexelResult>> = (0..dims[0])
+        (0..dims[0])
             .into_par_iter()
             .with_min_len(1)
             .map(&*column)
-            .collect();
-        (0..n)
-            .map(|i| cols[i % dims[0]][i / dims[0]].clone())
             .collect()
     } else {
         let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
@@ -87,7 +86,7 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
                 energy::texel_fn(spec)
             }
         };
-        (0..n)
+        vec![(0..n)
             .into_par_iter()
             .with_min_len(1)
             .map(|i| {
@@ -98,13 +97,22 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
                 ];
                 per_row(idx)
             })
-            .collect()
+            .collect()]
+    };
+    // texel i (axis 0 fastest)
+    let result = |i: usize| -> &TexelResult {
+        if by_column {
+            &blocks[i % dims[0]][i / dims[0]]
+        } else {
+            &blocks[0][i]
+        }
     };
     let nc = channels.len();
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
     let mut evals = 0u64;
-    for (i, r) in results.iter().enumerate() {
+    for i in 0..n {
+        let r = result(i);
         for c in 0..nc {
             let v = r.value[c];
             if !v.is_finite() || !(v as f32).is_finite() {
