@@ -27,7 +27,7 @@
 //! * height-correlated: `G/μ = 2 (n·l) / ((n·l) a_v + μ b_l)`,
 //! * separable: `G/μ = 2/(μ + a_v) · 2 (n·l)/((n·l) + b_l)`,
 //!
-//! both finite as μ → 0. Schlick's weight is `Fc = (1 − v·h)⁵` (Schlick 1994, eq. 24).
+//! both finite as μ → 0. Schlick's weight is `Fc = (1 − v·h)⁵` (Schlick 1994).
 //!
 //! **Cloth.** Charlie `D = (2 + 1/α) sin^{1/α}θh / (2π)` (Estevez & Kulla 2017) with
 //! Ashikhmin's visibility `V = 1/(4(n·l + n·v − (n·l)(n·v)))` (Neubelt & Pettineo 2013):
