@@ -251,6 +251,23 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         } else {
             method
         };
+    let kernel = match spec.kind {
+        TableKind::Dfg => {
+            spec.cloth || crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
+        }
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty => {
+            crate::table::albedo::uses_kernel(&spec.model)
+        }
+        _ => false,
+    };
+    let method = if kernel {
+        format!(
+            "{}. Generic path: {method}",
+            crate::integrate::dfg_kernel::METHOD
+        )
+    } else {
+        method
+    };
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
         if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }

@@ -4,6 +4,7 @@
 
 pub mod adaptive;
 pub mod chebyshev;
+pub mod dfg_kernel;
 pub mod gauss;
 pub mod hemisphere;
 pub mod monte_carlo;

@@ -58,13 +58,15 @@ const NMAX: usize = (1 << MAX_LEVEL) + 1;
 /// Clenshaw–Curtis weights on [−1, 1] for every level 0..=MAX_LEVEL, stored for the
 /// nodes of the finest level (index i ↔ x = cos(iπ/2^MAX_LEVEL)); a level-k rule uses the
 /// indices that are multiples of 2^(MAX_LEVEL − k).
-struct Rules {
-    x: [f64; NMAX],
+pub(crate) struct Rules {
+    pub(crate) x: [f64; NMAX],
     /// w[k][j] = weight of level k's j-th node (j = 0..=2^k).
-    w: Vec<Vec<f64>>,
+    pub(crate) w: Vec<Vec<f64>>,
 }
 
-fn rules() -> &'static Rules {
+/// The Clenshaw–Curtis nodes and weights of every level (shared with
+/// [`dfg_kernel`](super::dfg_kernel)).
+pub(crate) fn rules() -> &'static Rules {
     static R: OnceLock<Rules> = OnceLock::new();
     R.get_or_init(|| {
         let mut x = [0.0; NMAX];

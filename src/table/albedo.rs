@@ -31,8 +31,12 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
 
 /// E(μ) for one BRDF, to absolute tolerance `tol`. Returns [value], [error], evaluations.
 ///
-/// Smooth models use the fast tensor rule ([`integrate_over_l_smooth`], falling back to the
-/// adaptive integrator per texel); the V-groove term's kinks go to the adaptive one directly.
+/// GGX with Smith masking and Charlie with Ashikhmin's visibility (F = 1, no diffuse lobe,
+/// see [`uses_kernel`]) use the specialised kernels of
+/// [`dfg_kernel`](crate::integrate::dfg_kernel) first; other smooth models, and texels where a
+/// kernel's estimate does not reach the tolerance, the fast tensor rule
+/// ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
+/// V-groove term's kinks go to the adaptive one directly.
 pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
     let kinked = brdf
         .specular
@@ -41,12 +45,57 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
     if kinked {
         return directional_albedo_adaptive(brdf, mu, tol);
     }
+    // GGX + Smith and Charlie + Ashikhmin lobes with F = 1 and no diffuse lobe: the
+    // specialised kernels first (E = A + B of the split sum, errors added)
+    let mut spent = 0;
+    if let Some(s) = brdf.specular.as_ref().filter(|s| {
+        brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
+    }) {
+        use crate::integrate::dfg_kernel::{charlie_sheen, ggx_split_sum, Column, Smith};
+        use crate::model::NdfKind;
+        let smith = match (s.ndf.kind(), s.masking) {
+            (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
+            (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+            _ => None,
+        };
+        if let Some(smith) = smith {
+            match ggx_split_sum(&Column::new(mu), s.ndf.alpha(), smith, 0.5 * tol) {
+                Ok(e) => {
+                    return (
+                        [e.value[0] + e.value[1]],
+                        [e.error[0] + e.error[1]],
+                        e.evals,
+                    )
+                }
+                Err(n) => spent = n,
+            }
+        } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
+            match charlie_sheen(&Column::new(mu), s.ndf.alpha(), tol) {
+                Ok(e) => return (e.value, e.error, e.evals),
+                Err(n) => spent = n,
+            }
+        }
+    }
     let wd = brdf.diffuse_weight / PI;
     let e = integrate_over_l_smooth(mu, brdf.specular.as_ref().map(|s| &s.ndf), tol, |n| {
         let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));
         [s + wd * n.n_dot_l]
     });
-    (e.value, e.error, e.evals)
+    (e.value, e.error, e.evals + spent)
+}
+
+/// Whether [`directional_albedo`] tries the specialised kernels for this model.
+pub fn uses_kernel(model: &super::ModelSpec) -> bool {
+    use crate::model::NdfKind;
+    model.diffuse_weight == 0.0
+        && model.fresnel == crate::model::Fresnel::None
+        && matches!(
+            (model.ndf, model.masking),
+            (
+                Some(NdfKind::Ggx),
+                Masking::SmithHeightCorrelated | Masking::SmithSeparable
+            ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
+        )
 }
 
 /// [`directional_albedo`] by the adaptive integrator alone.

@@ -9,10 +9,12 @@
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
+use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
+use std::cell::RefCell;
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
@@ -66,22 +68,77 @@ pub fn sheen_albedo_adaptive(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
     (e.value[0], e.error[0], e.evals)
 }
 
-pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
-    let brdfs = brdfs_per_roughness(spec);
-    let axes = spec.axes.clone();
-    let tol = spec.tolerance;
-    let layout = spec.dfg_layout.expect("validated");
-    let cloth = spec.cloth;
-    Box::new(move |idx| {
-        let mu = axes[0].coord(idx[0]);
-        let s = brdfs[idx[1]]
+/// The Smith form the specialised kernel handles for this lobe, if it does (GGX with
+/// Smith masking; the split sums ignore the lobe's own Fresnel).
+fn kernel_smith(s: &Specular) -> Option<Smith> {
+    match (s.ndf.kind(), s.masking) {
+        (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
+        (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+        _ => None,
+    }
+}
+
+/// Whether a dfg table with this model uses the specialised kernels of
+/// [`dfg_kernel`] (first) for its split-sum channels.
+pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
+    ndf == Some(NdfKind::Ggx)
+        && matches!(
+            masking,
+            Masking::SmithHeightCorrelated | Masking::SmithSeparable
+        )
+}
+
+/// [`split_sum`] through the specialised GGX kernel where it applies, with the view setup
+/// of `col` (whose μ must be `mu`); the generic path where it does not apply or its
+/// estimate does not reach `tol` (the kernel's evaluations are counted either way).
+pub fn split_sum_column(
+    spec: &Specular,
+    col: &Column,
+    mu: f64,
+    tol: f64,
+) -> ([f64; 2], [f64; 2], u64) {
+    let mut spent = 0;
+    if let Some(smith) = kernel_smith(spec) {
+        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+            Ok(e) => return (e.value, e.error, e.evals),
+            Err(n) => spent = n,
+        }
+    }
+    let (v, e, n) = split_sum(spec, mu, tol);
+    (v, e, n + spent)
+}
+
+/// What every texel of a dfg table needs.
+struct Ctx {
+    brdfs: Vec<crate::model::Brdf>,
+    axes: Vec<crate::lut::Axis>,
+    tol: f64,
+    layout: DfgLayout,
+    cloth: bool,
+}
+
+impl Ctx {
+    fn new(spec: &TableSpec) -> Ctx {
+        Ctx {
+            brdfs: brdfs_per_roughness(spec),
+            axes: spec.axes.clone(),
+            tol: spec.tolerance,
+            layout: spec.dfg_layout.expect("validated"),
+            cloth: spec.cloth,
+        }
+    }
+
+    /// Texel (i0, j) with the view data `col` of column i0 (and its sheen `cache`).
+    fn texel(&self, j: usize, col: &Column, cache: &RefCell<SheenCache>) -> TexelResult {
+        let (mu, tol) = (col.mu(), self.tol);
+        let s = self.brdfs[j]
             .specular
             .as_ref()
             .expect("validated: dfg has an NDF");
         // each channel of the pair below is a sum/difference of the two integrals, so its
         // error bound is the sum of theirs
-        let ([a, b], [ea, eb], n) = split_sum(s, mu, tol);
-        let mut r = match layout {
+        let ([a, b], [ea, eb], n) = split_sum_column(s, col, mu, tol);
+        let mut r = match self.layout {
             DfgLayout::Karis => TexelResult {
                 value: vec![a, b],
                 error: vec![ea, eb],
@@ -93,13 +150,43 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
                 evals: n,
             },
         };
-        if cloth {
-            let alpha = axes[1].alpha(idx[1]).expect("roughness axis");
-            let (v, e, n) = sheen_albedo(alpha, mu, tol);
+        if self.cloth {
+            let alpha = self.axes[1].alpha(j).expect("roughness axis");
+            let (v, e, n) = match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
+                Ok(e) => (e.value[0], e.error[0], e.evals),
+                Err(spent) => {
+                    let (v, e, n) = sheen_albedo(alpha, mu, tol);
+                    (v, e, n + spent)
+                }
+            };
             r.value.push(v);
             r.error.push(e);
             r.evals += n;
         }
         r
+    }
+}
+
+/// The texels of one table column (one view μ, every roughness, in axis-1 order): the view
+/// setup ([`Column`]) and the cloth kernel's α-independent node data ([`SheenCache`]) are
+/// built once for the column and shared by its texels; each texel's value is the same, bit
+/// for bit, as computed alone ([`texel_fn`]).
+pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResult> + Sync> {
+    let ctx = Ctx::new(spec);
+    Box::new(move |i0| {
+        let col = Column::new(ctx.axes[0].coord(i0));
+        let cache = RefCell::new(SheenCache::default());
+        (0..ctx.axes[1].size)
+            .map(|j| ctx.texel(j, &col, &cache))
+            .collect()
+    })
+}
+
+/// One texel on its own (for single-point evaluations such as `readback`'s exact values).
+pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
+    let ctx = Ctx::new(spec);
+    Box::new(move |idx| {
+        let col = Column::new(ctx.axes[0].coord(idx[0]));
+        ctx.texel(idx[1], &col, &RefCell::new(SheenCache::default()))
     })
 }

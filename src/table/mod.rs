@@ -68,7 +68,8 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
 }
 
 /// [`bake`], giving up with [`BakeError::TimeLimit`] once `deadline` has passed (checked
-/// before every texel, so a bake overruns it by at most one texel per thread; a texel's
+/// before every texel — every column of a dfg table —, so a bake overruns it by at most one
+/// texel or column per thread; a texel's
 /// hemisphere integral is itself bounded by
 /// [`TEXEL_EVAL_BUDGET`](crate::integrate::hemisphere::TEXEL_EVAL_BUDGET)).
 pub fn bake_until(
@@ -80,43 +81,68 @@ pub fn bake_until(
         msg,
     })?;
     let channels = channels(spec);
-    let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
-        TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
-            local::texel_fn(spec)
-        }
-        TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
-        TableKind::Dfg => dfg::texel_fn(spec),
-        TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
-            energy::texel_fn(spec)
-        }
-        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
-    };
     let dims = [
         spec.axes.first().map_or(1, |a| a.size),
         spec.axes.get(1).map_or(1, |a| a.size),
         spec.axes.get(2).map_or(1, |a| a.size),
     ];
     let n = dims[0] * dims[1] * dims[2];
+    // `--max-time`: checked before every texel (every column of a dfg table); once passed,
+    // the remaining work is skipped and the bake fails with nothing to write
     let stopped = std::sync::atomic::AtomicBool::new(false);
-    let results: Vec<TexelResult> = (0..n)
-        .into_par_iter()
-        .with_min_len(1)
-        .map(|i| {
-            if let Some(d) = deadline {
-                use std::sync::atomic::Ordering::Relaxed;
-                if stopped.load(Relaxed) || d.passed() {
-                    stopped.store(true, Relaxed);
+    let out_of_time = || {
+        use std::sync::atomic::Ordering::Relaxed;
+        let Some(d) = deadline else { return false };
+        if stopped.load(Relaxed) || d.passed() {
+            stopped.store(true, Relaxed);
+            return true;
+        }
+        false
+    };
+    // The texel results in blocks: one block per column (axis-0 index) for dfg tables, which
+    // are computed a column (one view μ, all roughnesses) per task so that the column's view
+    // data is built once (dfg::column_fn); one block in texel order otherwise.
+    let by_column = spec.kind == TableKind::Dfg;
+    let blocks: Vec<Vec<TexelResult>> = if by_column {
+        let column = dfg::column_fn(spec);
+        (0..dims[0])
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|i| {
+                if out_of_time() {
+                    return Vec::new();
+                }
+                column(i)
+            })
+            .collect()
+    } else {
+        let per_row: Box<dyn Fn([usize; 3]) -> TexelResult + Sync> = match spec.kind {
+            TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
+                local::texel_fn(spec)
+            }
+            TableKind::Albedo | TableKind::AlbedoAvg => albedo::texel_fn(spec),
+            TableKind::Dfg => unreachable!("dfg tables are baked per column above"),
+            TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+                energy::texel_fn(spec)
+            }
+            TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
+        };
+        vec![(0..n)
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|i| {
+                if out_of_time() {
                     return TexelResult::exact(Vec::new());
                 }
-            }
-            let idx = [
-                i % dims[0],
-                (i / dims[0]) % dims[1],
-                i / (dims[0] * dims[1]),
-            ];
-            per_row(idx)
-        })
-        .collect();
+                let idx = [
+                    i % dims[0],
+                    (i / dims[0]) % dims[1],
+                    i / (dims[0] * dims[1]),
+                ];
+                per_row(idx)
+            })
+            .collect()]
+    };
     if stopped.into_inner() {
         return Err(BakeError::TimeLimit {
             name: spec.name.clone(),
@@ -124,11 +150,20 @@ pub fn bake_until(
             texels: n,
         });
     }
+    // texel i (axis 0 fastest)
+    let result = |i: usize| -> &TexelResult {
+        if by_column {
+            &blocks[i % dims[0]][i / dims[0]]
+        } else {
+            &blocks[0][i]
+        }
+    };
     let nc = channels.len();
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
     let mut evals = 0u64;
-    for (i, r) in results.iter().enumerate() {
+    for i in 0..n {
+        let r = result(i);
         for c in 0..nc {
             let v = r.value[c];
             if !v.is_finite() || !(v as f32).is_finite() {
