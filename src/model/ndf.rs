@@ -61,7 +61,7 @@ impl NdfKind {
     /// The citation for D.
     pub fn source(self) -> &'static str {
         match self {
-            NdfKind::Beckmann => "Beckmann & Spizzichino 1963; Cook & Torrance 1982, eq. 9; Walter et al. 2007, eq. 33",
+            NdfKind::Beckmann => "Beckmann & Spizzichino 1963; Cook & Torrance 1982, eq. 9; Walter et al. 2007, eq. 25",
             NdfKind::Ggx => "Trowbridge & Reitz 1975; Walter et al. 2007, eq. 33 (GGX)",
             NdfKind::Gaussian => "Cook & Torrance 1982, eq. 8 (normalization constant computed, not the small-slope 1/(pi m^2))",
             NdfKind::BlinnPhong => "Blinn 1977; normalization and s<->a mapping: Walter et al. 2007, sec. 5.2",
