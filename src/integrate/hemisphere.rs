@@ -298,8 +298,26 @@ pub fn integrate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
             }
         }
     }
+    // At grazing views ψ swings from +θv to −θv within |φ − π/2| ~ cot θv (see the module
+    // doc): a feature that narrow at the end of an O(1) panel falls between the Kronrod
+    // nodes (the node nearest an end of a 15-point panel of width h is ~0.004·h in), so K15
+    // and G7 can agree on a wrong value. Cuts graded geometrically towards π/2,
+    // φ = π/2 ∓ cot θv·4^k, give the feature panels of its own width.
+    let mut second = vec![FRAC_PI_2];
+    let cot_v = mu_v / sin_v;
+    if cot_v < 0.25 {
+        let mut d = cot_v;
+        while d < 0.5 {
+            first.push(FRAC_PI_2 - d);
+            second.push(FRAC_PI_2 + d);
+            d *= 4.0;
+        }
+        first.sort_by(f64::total_cmp);
+        second.sort_by(f64::total_cmp);
+    }
     first.push(FRAC_PI_2);
-    for cuts in [first, vec![FRAC_PI_2, PI]] {
+    second.push(PI);
+    for cuts in [first, second] {
         let e = integrate_pieces(phi_integrand, &cuts, outer_tol);
         for c in 0..N {
             total.value[c] += 2.0 * e.value[c];
