@@ -42,7 +42,7 @@
 
 use super::adaptive::Estimate;
 use super::hemisphere::tan_theta_h_max;
-use super::tensor::{rules as cc_rules, MAX_LEVEL, MAX_NODES, MIN_LEVEL};
+use super::tensor::{rules as cc_rules, MAX_LEVEL};
 use std::cell::RefCell;
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 
@@ -662,8 +662,9 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// The nested Clenshaw–Curtis tensor rule of [`tensor`](super::tensor) (levels, refinement
-/// order, estimate and budget identical) over a specialised [`Fill`].
+/// The nested Clenshaw–Curtis tensor rule of [`tensor`](super::tensor) — its level driver
+/// [`refine`](super::tensor::refine) itself — over a specialised [`Fill`], with the inner sums
+/// cached per φ node.
 fn run<const N: usize, K: Fill<N>>(sc: &mut Scratch, k: &K, tol: f64) -> Result<Estimate<N>, u64> {
     let r = cc_rules();
     sc.vals.resize(NMAX * NMAX * N, 0.0);
@@ -673,14 +674,13 @@ fn run<const N: usize, K: Fill<N>>(sc: &mut Scratch, k: &K, tol: f64) -> Result<
     sc.inner.resize(NMAX * 3 * N, 0.0);
     sc.inner_level.clear();
     sc.inner_level.resize(NMAX, usize::MAX);
-    let mut evals = 0u64;
     let mut tmp = Tmp {
         xs: [0.0; NMAX],
         js: [0; NMAX],
         v0: [0.0; NMAX],
         v1: [0.0; NMAX],
     };
-    let mut fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
+    let fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
         let tmp = &mut tmp;
         let have = sc.level[i];
         if have != usize::MAX && have >= ku {
@@ -744,72 +744,7 @@ fn run<const N: usize, K: Fill<N>>(sc: &mut Scratch, k: &K, tol: f64) -> Result<
         sc.inner_level[i] = ku;
         out
     };
-    let quads = |sc: &mut Scratch, kp: usize, ku: usize| -> [[f64; N]; 5] {
-        let mut q = [[0.0; N]; 5];
-        let ps = 1usize << (MAX_LEVEL - kp);
-        for (ii, &wi) in r.w[kp].iter().enumerate() {
-            let i = ii * ps;
-            let s3 = inner(sc, i, ku);
-            for c in 0..N {
-                q[0][c] += wi * s3[0][c];
-                q[3][c] += wi * s3[1][c];
-                q[4][c] += wi * s3[2][c];
-            }
-            for a in 1..=2 {
-                if ii % (1 << a) == 0 {
-                    let w = r.w[kp - a][ii >> a];
-                    for c in 0..N {
-                        q[a][c] += w * s3[0][c];
-                    }
-                }
-            }
-        }
-        q
-    };
-    let (mut kp, mut ku) = (MIN_LEVEL, MIN_LEVEL);
-    let grid = |kp: usize| (0..NMAX).step_by(1usize << (MAX_LEVEL - kp));
-    for i in grid(kp) {
-        fill(sc, &mut evals, i, ku);
-    }
-    loop {
-        let [q, qp1, qp2, qu1, qu2] = quads(&mut *sc, kp, ku);
-        let mut err = [0.0; N];
-        let (mut ep, mut eu) = (0.0f64, 0.0f64);
-        for c in 0..N {
-            let sc_c = q[c].abs().max(tol);
-            let d = |x: f64, y: f64| (x - y).abs();
-            let a = d(q[c], qp1[c]).max(d(qp1[c], qp2[c]).powi(2) / sc_c);
-            let b = d(q[c], qu1[c]).max(d(qu1[c], qu2[c]).powi(2) / sc_c);
-            ep = ep.max(a);
-            eu = eu.max(b);
-            err[c] = a + b;
-        }
-        if !(ep.is_finite() && eu.is_finite()) {
-            return Err(evals);
-        }
-        if err.iter().all(|&e| e <= tol) && q.iter().all(|v| v.is_finite()) {
-            return Ok(Estimate {
-                value: q,
-                error: err,
-                evals,
-            });
-        }
-        let (can_p, can_u) = (kp < MAX_LEVEL, ku < MAX_LEVEL);
-        if !(can_p || can_u) {
-            return Err(evals);
-        }
-        if if ep >= eu { can_p } else { !can_u } {
-            kp += 1;
-        } else {
-            ku += 1;
-        }
-        if ((1usize << kp) + 1) * ((1usize << ku) + 1) > MAX_NODES {
-            return Err(evals);
-        }
-        for i in grid(kp) {
-            fill(sc, &mut evals, i, ku);
-        }
-    }
+    super::tensor::refine(sc, tol, fill, inner)
 }
 
 #[cfg(test)]

@@ -203,7 +203,6 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         1.0
     };
     let big_s = (FRAC_PI_2 / c).asinh();
-    let mut evals = 0u64;
     // Fills the values of φ index i up to u level ku.
     let fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
         let have = sc.level[i];
@@ -329,7 +328,7 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
     };
 
     // The inner sums of φ node i at u levels ku, ku − 1, ku − 2 (times the node's scale).
-    let inner = |sc: &Scratch, i: usize, ku: usize| -> [[f64; N]; 3] {
+    let inner = |sc: &mut Scratch, i: usize, ku: usize| -> [[f64; N]; 3] {
         let base = i * NMAX * N;
         let mut out = [[0.0; N]; 3];
         for (m, o) in out.iter_mut().enumerate() {
@@ -347,9 +346,27 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         }
         out
     };
+    refine(sc, tol, fill, inner)
+}
+
+/// The nested level driver of the fast paths (this file's generic one and the specialised
+/// kernels of [`dfg_kernel`](super::dfg_kernel)): starting from level [`MIN_LEVEL`] in both
+/// dimensions, `fill(sc, evals, i, ku)` brings φ node `i`'s inner values to u level `ku`
+/// (counting new evaluations) and `inner(sc, i, ku)` returns its inner sums at u levels
+/// ku, ku − 1, ku − 2 (times the node's scale); the dimension with the larger estimated
+/// error is refined until the estimate meets `tol`, or `Err(evaluations)` once
+/// [`MAX_LEVEL`] / [`MAX_NODES`] is reached or the estimate is not finite.
+pub(crate) fn refine<const N: usize, S>(
+    sc: &mut S,
+    tol: f64,
+    mut fill: impl FnMut(&mut S, &mut u64, usize, usize),
+    mut inner: impl FnMut(&mut S, usize, usize) -> [[f64; N]; 3],
+) -> Result<Estimate<N>, u64> {
+    let r = rules();
+    let mut evals = 0u64;
     // Q(kp − a, ku − b) for (a, b) in (0,0), (1,0), (2,0), (0,1), (0,2): the φ rule of level
     // kp − a uses the φ indices that are multiples of 2^(MAX_LEVEL − kp + a).
-    let quads = |sc: &Scratch, kp: usize, ku: usize| -> [[f64; N]; 5] {
+    let mut quads = |sc: &mut S, kp: usize, ku: usize| -> [[f64; N]; 5] {
         let mut q = [[0.0; N]; 5];
         let ps = 1usize << (MAX_LEVEL - kp);
         for (ii, &wi) in r.w[kp].iter().enumerate() {
@@ -378,7 +395,7 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         fill(sc, &mut evals, i, ku);
     }
     loop {
-        let [q, qp1, qp2, qu1, qu2] = quads(sc, kp, ku);
+        let [q, qp1, qp2, qu1, qu2] = quads(&mut *sc, kp, ku);
         // Per dimension, the error of the kept level is estimated by the last difference
         // |Q_k − Q_{k−1}| (the error of the coarser rule), but never below what the
         // difference before predicts if convergence were only quadratic in that relative
@@ -399,7 +416,8 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         if !(ep.is_finite() && eu.is_finite()) {
             return Err(evals);
         }
-        if err.iter().all(|&e| e <= tol) {
+        // (a NaN value can hide behind a finite estimate: `max` ignores NaN)
+        if err.iter().all(|&e| e <= tol) && q.iter().all(|v| v.is_finite()) {
             return Ok(Estimate {
                 value: q,
                 error: err,

@@ -29,7 +29,7 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
         .collect()
 }
 
-/// E(μ) for one BRDF, to absolute tolerance `tol`. Returns [value], [error], evaluations.
+/// E(μ) for one BRDF, to absolute tolerance `tol`. Returns `([value], [error], evaluations)`.
 ///
 /// GGX with Smith masking and Charlie with Ashikhmin's visibility (F = 1, no diffuse lobe,
 /// see [`uses_kernel`]) use the specialised kernels of
