@@ -666,7 +666,6 @@ thread_local! {
 /// [`refine`](super::tensor::refine) itself — over a specialised [`Fill`], with the inner sums
 /// cached per φ node.
 fn run<const N: usize, K: Fill<N>>(sc: &mut Scratch, k: &K, tol: f64) -> Result<Estimate<N>, u64> {
-    let r = cc_rules();
     sc.vals.resize(NMAX * NMAX * N, 0.0);
     sc.level.clear();
     sc.level.resize(NMAX, usize::MAX);
@@ -722,20 +721,8 @@ fn run<const N: usize, K: Fill<N>>(sc: &mut Scratch, k: &K, tol: f64) -> Result<
             }
             return out;
         }
-        let base = i * NMAX * N;
-        for (m, o) in out.iter_mut().enumerate() {
-            let kk = ku - m;
-            let us = 1usize << (MAX_LEVEL - kk);
-            for (jj, &wj) in r.w[kk].iter().enumerate() {
-                let at = base + jj * us * N;
-                for c in 0..N {
-                    o[c] += wj * sc.vals[at + c];
-                }
-            }
-            for v in o.iter_mut() {
-                *v *= sc.scale[i];
-            }
-        }
+        let out: [[f64; N]; 3] =
+            super::tensor::inner_sums(&sc.vals[i * NMAX * N..(i + 1) * NMAX * N], sc.scale[i], ku);
         for m in 0..3 {
             for c in 0..N {
                 sc.inner[cache + m * N + c] = out[m][c];

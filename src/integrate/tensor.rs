@@ -327,26 +327,32 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
         sc.level[i] = ku;
     };
 
-    // The inner sums of φ node i at u levels ku, ku − 1, ku − 2 (times the node's scale).
     let inner = |sc: &mut Scratch, i: usize, ku: usize| -> [[f64; N]; 3] {
-        let base = i * NMAX * N;
-        let mut out = [[0.0; N]; 3];
-        for (m, o) in out.iter_mut().enumerate() {
-            let k = ku - m;
-            let us = 1usize << (MAX_LEVEL - k);
-            for (jj, &wj) in r.w[k].iter().enumerate() {
-                let at = base + jj * us * N;
-                for c in 0..N {
-                    o[c] += wj * sc.vals[at + c];
-                }
-            }
-            for v in o.iter_mut() {
-                *v *= sc.scale[i];
-            }
-        }
-        out
+        inner_sums(&sc.vals[i * NMAX * N..(i + 1) * NMAX * N], sc.scale[i], ku)
     };
     refine(sc, tol, fill, inner)
+}
+
+/// The inner sums of one φ node at u levels ku, ku − 1, ku − 2, times `scale` (the node's
+/// inner half-length × outer Jacobian); `vals` is the node's NMAX × N channel-interleaved
+/// values, filled at least to level `ku`.
+pub(crate) fn inner_sums<const N: usize>(vals: &[f64], scale: f64, ku: usize) -> [[f64; N]; 3] {
+    let r = rules();
+    let mut out = [[0.0; N]; 3];
+    for (m, o) in out.iter_mut().enumerate() {
+        let k = ku - m;
+        let us = 1usize << (MAX_LEVEL - k);
+        for (jj, &wj) in r.w[k].iter().enumerate() {
+            let at = jj * us * N;
+            for c in 0..N {
+                o[c] += wj * vals[at + c];
+            }
+        }
+        for v in o.iter_mut() {
+            *v *= scale;
+        }
+    }
+    out
 }
 
 /// The nested level driver of the fast paths (this file's generic one and the specialised
