@@ -262,7 +262,8 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     };
     let method = if kernel {
         format!(
-            "{}. Generic path: {method}",
+            "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
+            crate::integrate::ggx_polar::METHOD,
             crate::integrate::dfg_kernel::METHOD
         )
     } else {

@@ -6,6 +6,7 @@ pub mod adaptive;
 pub mod chebyshev;
 pub mod dfg_kernel;
 pub mod gauss;
+pub mod ggx_polar;
 pub mod hemisphere;
 pub mod monte_carlo;
 pub mod tensor;

@@ -59,15 +59,19 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
             _ => None,
         };
         if let Some(smith) = smith {
+            match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
+                Ok(e) => return (e.value, e.error, e.evals),
+                Err(n) => spent = n,
+            }
             match ggx_split_sum(&Column::new(mu), s.ndf.alpha(), smith, 0.5 * tol) {
                 Ok(e) => {
                     return (
                         [e.value[0] + e.value[1]],
                         [e.error[0] + e.error[1]],
-                        e.evals,
+                        e.evals + spent,
                     )
                 }
-                Err(n) => spent = n,
+                Err(n) => spent += n,
             }
         } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
             match charlie_sheen(&Column::new(mu), s.ndf.alpha(), tol) {

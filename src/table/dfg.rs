@@ -10,6 +10,7 @@
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
 use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
+use crate::integrate::ggx_polar;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::model::fresnel::schlick_weight;
@@ -88,9 +89,10 @@ pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
         )
 }
 
-/// [`split_sum`] through the specialised GGX kernel where it applies, with the view setup
-/// of `col` (whose μ must be `mu`); the generic path where it does not apply or its
-/// estimate does not reach `tol` (the kernel's evaluations are counted either way).
+/// [`split_sum`] through the specialised GGX kernels where they apply — the 1D polar one
+/// ([`ggx_polar`]) first, then the 2D one of [`dfg_kernel`] with the view setup of `col`
+/// (whose μ must be `mu`) — and the generic path where they do not apply or their
+/// estimates do not reach `tol` (the kernels' evaluations are counted either way).
 pub fn split_sum_column(
     spec: &Specular,
     col: &Column,
@@ -99,9 +101,13 @@ pub fn split_sum_column(
 ) -> ([f64; 2], [f64; 2], u64) {
     let mut spent = 0;
     if let Some(smith) = kernel_smith(spec) {
-        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+        match ggx_polar::ggx_split_sum(mu, spec.ndf.alpha(), smith, tol) {
             Ok(e) => return (e.value, e.error, e.evals),
             Err(n) => spent = n,
+        }
+        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+            Ok(e) => return (e.value, e.error, e.evals + spent),
+            Err(n) => spent += n,
         }
     }
     let (v, e, n) = split_sum(spec, mu, tol);
