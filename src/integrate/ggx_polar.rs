@@ -27,24 +27,35 @@
 //! `R = (g(z) − g(M) − g'(M)(z − M))/(z − M)² = P₂(s)/(s + s₀)²`,
 //!
 //! where `P₂` is G divided twice by (s − s₀) (synthetic division, exact up to rounding, so R
-//! is evaluated without the cancellation of the first form). R is bounded and analytic in φ
-//! except where z = 0, which lies outside [0, π] at the distance set by
-//! `(P − Q)/Q = (1 + cos(θv + θl))/(sv sl)`: the trapezoid rule on the periodic integrand
-//! then converges geometrically (ρ^(−2n), Trefethen & Weideman 2014, "The exponentially
-//! convergent trapezoidal rule", thm. 3.2). It is applied with 8, 16, 32, 64 intervals until
-//! two successive results agree to the inner tolerance; where they do not (both directions
-//! near grazing, where the z = 0 branch point meets the pole), the φ integral of D Fc is done
-//! by the adaptive Gauss–Kronrod rule in ψ, `tan(φ/2) = √((S+Q)/(S−Q)) tan(ψ/2)`, which makes
+//! is evaluated without the cancellation of the first form). R is bounded, but as a function
+//! of φ it is singular where z = 0, just outside [0, π] when both directions are near
+//! grazing (z_min = P − Q = 4 cos²((θv + θl)/2)). The rule is therefore taken in s itself:
+//! with `s = s_min + h (1 + cos ϑ)` (`s_min = √(P − Q)`, `s_max = √(P + Q)`,
+//! `h = (s_max − s_min)/2`), `dφ = 2s dϑ/√((s + s_min)(s + s_max))`, so
+//!
+//! `∫₀^π R dφ = ∫₀^π R(s) 2s/√((s + s_min)(s + s_max)) dϑ`,
+//!
+//! whose integrand is analytic in ϑ except at s = −s_min, −s_max, −s₀, at a distance
+//! proportional to s_min rather than s_min² from the interval. The trapezoid rule on this
+//! even periodic integrand converges geometrically (Trefethen & Weideman 2014, "The
+//! exponentially convergent trapezoidal rule", thm. 3.2). It is applied with 4, 8, 16, 32,
+//! 64 intervals until two successive results agree to the inner tolerance; where they do not
+//! (both directions within a few degrees of grazing), the φ integral of D Fc is done by the
+//! adaptive Gauss–Kronrod rule in ψ, `tan(φ/2) = √((S+Q)/(S−Q)) tan(ψ/2)`, which makes
 //! `dφ/y = dψ/r` and the integrand `(α²/π) z² Fc (S − Q cos ψ)/r³` bounded.
 //!
 //! **The outer integral** over θl is split at θv (where the lobe peaks: near θl = θv,
-//! `S − Q ≈ μv² ((θl − θv)² + 4α²)`) and warped there, `θl = θv ± 2α sinh t`, then integrated
-//! by the adaptive Gauss–Kronrod rule ([`integrate`]), both channels at once.
+//! `S − Q ≈ μv² ((θl − θv)² + 4α²)`) and warped there, `θl = θv ± w sinh t`, and, where the
+//! horizon is far from θv, again near the horizon, where the masking turns over at
+//! μl ≈ μv α/a_v (see `run`); each piece is integrated by the adaptive Gauss–Kronrod rule
+//! ([`integrate`]), both channels at once.
 //!
 //! **Error.** The outer rule's estimate (|K15 − G7|, an over-estimate) plus a bound on the
-//! inner rules': with `G2/(2μv) ≤ 2/α` (both Smith forms) and `∫ sin θl dθl = 1`, an inner
-//! error δ on `(1/π)∫R dφ` everywhere moves the Schlick channel by at most `2α δ`. A texel
-//! whose total does not reach the tolerance returns `Err` and the caller falls back.
+//! inner rules': an inner error δ(θl) on `(1/π)∫R dφ` moves the Schlick channel by
+//! `∫ k α² δ dθl` with the line's weight `k = sin θl G2/(2μv)`, at most `(π/2) max(k α² δ)`;
+//! each line is asked for `δ ≤ tol/(2π α² k)` (so lines near the horizon, where G2 → 0, are
+//! cheap) and the bound from the δ actually reached is added to the estimate. A texel whose
+//! total does not reach the tolerance returns `Err` and the caller falls back.
 
 // Channel loops index several same-length arrays at once.
 #![allow(clippy::needless_range_loop)]
@@ -365,8 +376,8 @@ mod tests {
     use super::*;
 
     /// The closed-form I₀ equals a brute-force φ integral of GGX's D, and I₅ (subtracted
-    /// trapezoid) equals one of D·Fc: the rational form of D and the pole subtraction are
-    /// exact identities, so only the brute-force rule's error (composite Simpson with 2e5
+    /// trapezoid, and the fallback rule in ψ) equals one of D·Fc: the rational form of D,
+    /// the pole subtraction and the substitutions are exact identities, so only the brute-force rule's error (composite Simpson with 2e5
     /// panels on a peak resolved to ≥ 50 nodes: relative ~1e-12) remains.
     #[test]
     fn azimuthal_integrals_match_brute_force() {
@@ -413,6 +424,14 @@ mod tests {
                 let (b0, b5) = (s0 * h, s5 * h);
                 assert!((l.i0 - b0).abs() <= 1e-10 * b0, "I0 {} vs {b0}", l.i0);
                 assert!((l.i5 - b5).abs() <= 1e-10 * b0, "I5 {} vs {b5}", l.i5);
+                // the fallback rule in ψ on its own
+                let m = (mu_v + ml) * (mu_v + ml);
+                let dm = a2 * m + (sin_v - sl) * (sin_v - sl);
+                let dp = a2 * m + (sin_v + sl) * (sin_v + sl);
+                let ch = (0.5 * (t.theta_v + theta_l)).cos();
+                let q = 2.0 * sin_v * sl;
+                let (p5, _, _) = i5_psi(dm, q, (dm * dp).sqrt(), 4.0 * ch * ch, a2, 1e-13);
+                assert!((p5 - b5).abs() <= 1e-10 * b0, "I5 (psi) {p5} vs {b5}");
             }
         }
     }
