@@ -97,11 +97,16 @@ struct Texel {
     /// `√(μv²(1 − α²) + α²)` (Λ(μv) = (a_v − μv)/(2μv)).
     a_v: f64,
     smith: Smith,
+    /// sin and cos of θv/2, and √(1 − α²): so that a line needs one sin_cos.
+    half_v: (f64, f64),
+    sqrt_1ma2: f64,
 }
 
 /// The azimuthal integrals at one θl: `[I₀, I₅]`, the inner error bound on (1/π)∫R dφ and
 /// the evaluations spent.
 struct Line {
+    /// The line's weight in the θl integral, `sin θl G2/(2μv)`.
+    k: f64,
     i0: f64,
     i5: f64,
     err: f64,
@@ -120,8 +125,14 @@ impl Texel {
         }
     }
 
-    fn line(&self, theta_l: f64, inner_tol: f64, with_fc: bool) -> Line {
-        let (sin_l, mu_l) = theta_l.sin_cos();
+    /// The azimuthal integrals at `theta_l`; `tol_k` is the inner tolerance times the
+    /// line's weight k (the inner rules are asked for `tol_k / k`).
+    fn line(&self, theta_l: f64, tol_k: f64, with_fc: bool) -> Line {
+        let (hs, hc) = (0.5 * theta_l).sin_cos();
+        let sin_l = 2.0 * hs * hc;
+        let mu_l = (hc - hs) * (hc + hs);
+        let k = self.g_fac(mu_l) * sin_l;
+        let inner_tol = tol_k / k;
         let (mu_v, sin_v, a2) = (self.mu_v, self.sin_v, self.a2);
         let m = (mu_v + mu_l) * (mu_v + mu_l);
         let big_m = m * (1.0 - a2);
@@ -135,6 +146,7 @@ impl Texel {
         let i0 = a2 * (1.0 + 2.0 * big_m * j1 + big_m * big_m * j2);
         if !with_fc {
             return Line {
+                k,
                 i0,
                 i5: 0.0,
                 err: 0.0,
@@ -143,7 +155,7 @@ impl Texel {
         }
 
         // g(M), g'(M) and P₂ = G ÷ (s − s₀) ÷ (s − s₀) after removing g'(M)(s + s₀)
-        let s0 = big_m.sqrt();
+        let s0 = (mu_v + mu_l) * self.sqrt_1ma2;
         let u0 = 1.0 - 0.5 * s0;
         let u04 = u0 * u0 * u0 * u0;
         let g_m = big_m * big_m * u04 * u0;
@@ -162,8 +174,9 @@ impl Texel {
         }
         // in s = √z = 2 v·h ∈ [s_min, s_max] (see the module doc), s = s_min + h (1 + cos ϑ):
         // s_min = √(P − Q) = 2 cos((θv + θl)/2), s_max = √(P + Q) = 2 cos((θv − θl)/2)
-        let s_min = 2.0 * (0.5 * (self.theta_v + theta_l)).cos().max(0.0);
-        let s_max = 2.0 * (0.5 * (self.theta_v - theta_l)).cos();
+        let (hsv, hcv) = self.half_v;
+        let s_min = (2.0 * (hcv * hc - hsv * hs)).max(0.0);
+        let s_max = 2.0 * (hcv * hc + hsv * hs);
         let h = 0.5 * (s_max - s_min).max(0.0);
         let opc = one_plus_cos();
         let r_at = |k: usize| {
@@ -196,6 +209,7 @@ impl Texel {
             if d <= inner_tol && cur.is_finite() {
                 let i5 = a2 * (g_m * j2 + dg_m * j1 + cur);
                 return Line {
+                    k,
                     i0,
                     i5,
                     err: d,
@@ -204,9 +218,9 @@ impl Texel {
             }
             prev = cur;
         }
-        let ch = (0.5 * (self.theta_v + theta_l)).cos();
-        let (i5, err, n) = i5_psi(dm, q, r, 4.0 * ch * ch, a2, inner_tol);
+        let (i5, err, n) = i5_psi(dm, q, r, s_min * s_min, a2, inner_tol);
         Line {
+            k,
             i0,
             i5,
             err,
@@ -279,6 +293,8 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
         a2,
         a_v: (mu * mu * (1.0 - a2) + a2).sqrt(),
         smith,
+        half_v: (0.5 * sin_v.atan2(mu)).sin_cos(),
+        sqrt_1ma2: (1.0 - a2).sqrt(),
     };
     let theta_v = t.theta_v;
     // Scales of the integrand's features in θl: the lobe, S − Q ≈ μv²((θl − θv)² + 4α²),
@@ -326,17 +342,15 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             };
             let p = integrate(
                 |x: f64| {
-                    let d = scale * x.sinh();
-                    let theta_l = (origin + sign * d).clamp(0.0, FRAC_PI_2);
-                    let jac = scale * x.cosh();
-                    // the weight of this line in the θl integral; an inner error δ here
-                    // moves the result by k·α²·δ per unit θl: δ ≤ tol/(2π α² k) keeps
-                    // the sum ≤ tol/4
-                    let k = t.g_fac(theta_l.cos()) * theta_l.sin();
-                    let l = t.line(theta_l, tol / (2.0 * PI * a2 * k), with_fc);
-                    inner_err = inner_err.max(k * a2 * l.err);
+                    let sh = x.sinh();
+                    let theta_l = (origin + sign * scale * sh).clamp(0.0, FRAC_PI_2);
+                    let jac = scale * (1.0 + sh * sh).sqrt();
+                    // an inner error δ on the line of weight k moves the result by k·α²·δ
+                    // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
+                    let l = t.line(theta_l, tol / (2.0 * PI * a2), with_fc);
+                    inner_err = inner_err.max(l.k * a2 * l.err);
                     evals += l.evals;
-                    [k * jac * l.i0, k * jac * l.i5]
+                    [l.k * jac * l.i0, l.k * jac * l.i5]
                 },
                 lo,
                 hi,
@@ -397,6 +411,8 @@ mod tests {
                 a2,
                 a_v: (mu_v * mu_v * (1.0 - a2) + a2).sqrt(),
                 smith: Smith::HeightCorrelated,
+                half_v: (0.5 * sin_v.atan2(mu_v)).sin_cos(),
+                sqrt_1ma2: (1.0 - a2).sqrt(),
             };
             for &theta_l in &[0.1, 0.5, t.theta_v, 1.2, 1.5] {
                 let (sl, ml): (f64, f64) = theta_l.sin_cos();
@@ -420,7 +436,7 @@ mod tests {
                     s5 += w * d * (1.0 - vh).powi(5);
                 }
                 let h = PI / n as f64 / 3.0;
-                let l = t.line(theta_l, 1e-13, true);
+                let l = t.line(theta_l, 1e-13 * t.g_fac(ml) * sl, true);
                 let (b0, b5) = (s0 * h, s5 * h);
                 assert!((l.i0 - b0).abs() <= 1e-10 * b0, "I0 {} vs {b0}", l.i0);
                 assert!((l.i5 - b5).abs() <= 1e-10 * b0, "I5 {} vs {b5}", l.i5);
