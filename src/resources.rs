@@ -127,7 +127,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     use crate::table::TableKind as K;
     let spec = &t.spec;
     let vgroove = spec.model.masking == Masking::VGroove;
-    let albedo = if vgroove { 13_000.0 } else { 1_500.0 };
+    let albedo = if vgroove { 2_100.0 } else { 1_500.0 };
     // (per texel, per roughness row)
     match spec.kind {
         K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),

@@ -9,5 +9,6 @@ pub mod gauss;
 pub mod hemisphere;
 pub mod monte_carlo;
 pub mod tensor;
+pub mod vgroove;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};
