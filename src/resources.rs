@@ -116,8 +116,9 @@ const EVALS_PER_NUMERIC_G1: f64 = 1e6;
 
 /// The typical integrand evaluations per texel of an integrated table kind at the default
 /// tolerance (1e-6), measured with `scripts/bench.sh` on the default presets (evaluations ÷
-/// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e), V-groove albedo 12,985
-/// (`cook-torrance-1982`/albedo), average albedo 159,453 per roughness (`e-avg`), DFG
+/// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e), V-groove albedo 2,076
+/// (`cook-torrance-1982`/albedo; 12,985 before its fast path,
+/// [`vgroove`](crate::integrate::vgroove)), average albedo 159,453 per roughness (`e-avg`), DFG
 /// 1,573 (`karis-envbrdf`) + 1,750 for the cloth channel (`filament-dfg` 3,321), Fresnel
 /// albedo 1,111, dielectric BTDF 19,551 (all 2026-11-29). Grazing views and near-delta
 /// lobes cost more, smooth wide lobes less; the estimate is a guide, the run-time check of
@@ -132,7 +133,8 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     match spec.kind {
         K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),
         K::Albedo => (albedo, 0.0),
-        K::AlbedoAvg => (160_000.0 * if vgroove { 9.0 } else { 1.0 }, 0.0),
+        // (V-groove E_avg measured at 83,000-190,000 per texel since its fast path)
+        K::AlbedoAvg => (160_000.0, 0.0),
         K::Dfg => (1_600.0 + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
         K::KullaConty => (albedo, 160_000.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
