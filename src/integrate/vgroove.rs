@@ -34,6 +34,13 @@
 //! **Warps.** φ = π/2 + c·sinh s with `c = min(cot θv, 1)` as in the smooth fast path (the
 //! panels are intervals of s); the inner variable of a piece is the lobe warp
 //! `u = asinh(tan θh / α)` mapped linearly from the piece's ends in u.
+//!
+//! **Tail cut.** A narrow lobe seen at a grazing angle makes the pieces long in u (the
+//! middle one reaches u ≈ 7.5 for α = 0.05, μ = 1/64) while the integrand lives in the
+//! first ~2 units of it: the nested rule then spends its nodes on zeros and may not
+//! converge within 65×65 nodes. Where the caller can bound the integrand's tail (a
+//! [`TailCut`], e.g. [`TailCut::beckmann_vgroove`]), u stops at the cut and the bound is
+//! added to the error estimate.
 
 // Channel loops index several same-length arrays at once; iterator chains would hide that.
 #![allow(clippy::needless_range_loop)]
@@ -93,9 +100,9 @@ fn piece_ends(p: Piece, s: f64, alpha: f64, tan_max: f64, cap: f64) -> (f64, f64
     }
 }
 
-/// Where a lobe's tail may be left out: beyond `u = asinh(tan θh / α) > u`, the integrand
-/// integrates to at most `mass` (absolute, any channel), which the fast path adds to its
-/// error estimate.
+/// Where a lobe's tail may be left out: over the half vectors with
+/// `asinh(tan θh / α) > u` the integrand integrates to at most `mass` (absolute, every
+/// channel), which the fast path adds to its error estimate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TailCut {
     pub u: f64,
