@@ -10,5 +10,6 @@ pub mod ggx_polar;
 pub mod hemisphere;
 pub mod monte_carlo;
 pub mod tensor;
+pub mod vgroove;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};

@@ -13,6 +13,7 @@ use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
 use crate::integrate::ggx_polar;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::tensor::integrate_over_l_smooth;
+use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use std::cell::RefCell;
@@ -21,7 +22,8 @@ use std::cell::RefCell;
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
 ///
 /// Smooth maskings use the fast tensor rule ([`integrate_over_l_smooth`], falling back to the
-/// adaptive integrator per texel); the V-groove term's kinks go to the adaptive one directly.
+/// adaptive integrator per texel); the V-groove term, the tensor rule on its smooth branches
+/// ([`integrate_over_l_kinked`], falling back to the adaptive integrator per texel).
 pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
     let g = |n: &Node| {
         let f = spec.cosine_weighted_with(n, 1.0);
@@ -29,7 +31,9 @@ pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64
         [f * (1.0 - fc), f * fc]
     };
     let e = if spec.masking == Masking::VGroove {
-        integrate_over_l(mu, spec.warp(), tol, g)
+        // (F = 1 here, and both channels are at most f·(n·l): the tail cut holds for each)
+        let tail = super::albedo::vgroove_fast_path(spec, 0.0, tol).unwrap_or(TailCut::NONE);
+        integrate_over_l_kinked(mu, spec.warp(), tail, tol, g)
     } else {
         integrate_over_l_smooth(mu, Some(&spec.ndf), tol, g)
     };
