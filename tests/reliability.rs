@@ -199,9 +199,11 @@ const CASES: &[(&str, i32, &[&str], Setup)] = &[
         os(&["bake", "p.json", "--out", "out", "--max-time", "0"])
     }),
     (
-        // 2048 × 2048 albedo texels on one thread: ~6·10⁹ evaluations, estimated at over
-        // 10 minutes (the default limit) and refused at once — within the memory limit, so
-        // it is the time estimate that refuses it
+        // 4096 × 2048 Beckmann albedo texels on one thread (the generic fast path, ~1,500
+        // evaluations per texel): ~1.3·10¹⁰ evaluations, estimated at ~21 minutes, over the
+        // default limit of 10, and refused at once — within the memory limit, so it is the
+        // time estimate that refuses it (GGX albedo, with its 1D kernel at ~100 evaluations
+        // per texel, would take only ~2 minutes)
         "estimated time over the default limit",
         INPUT,
         &[
@@ -215,8 +217,8 @@ const CASES: &[(&str, i32, &[&str], Setup)] = &[
             fs::write(
                 w.join("big.json"),
                 r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo",
-                   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
-                   "axes": {"cos_theta_v": {"size": 2048},
+                   "model": {"ndf": "beckmann", "masking": "smith-height-correlated"},
+                   "axes": {"cos_theta_v": {"size": 4096},
                             "roughness": {"size": 2048, "quantity": "perceptual"}}}]}"#,
             )
             .unwrap();
