@@ -121,7 +121,11 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     }
 }
 
-/// Integrates over the panels between sorted breakpoints, sharing `tol.abs` by length.
+/// Integrates over the panels between sorted breakpoints. `tol.abs` is shared half by
+/// length and half equally among the n non-empty panels (shares sum to `tol.abs`): by
+/// length alone a short panel next to a kink, or the lobe's panel in front of the long
+/// exponential tail up to u = 30, would get a tiny share and need the finest rule for
+/// nothing.
 fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
     mut f: F,
     mut breaks: Vec<Break>,
@@ -134,6 +138,7 @@ fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
     if span <= 0.0 {
         return total;
     }
+    let n = breaks.windows(2).filter(|w| w[1].x > w[0].x).count() as f64;
     for w in breaks.windows(2) {
         if w[1].x <= w[0].x {
             continue;
@@ -143,7 +148,7 @@ fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
             w[0],
             w[1],
             Tolerance {
-                abs: tol.abs * (w[1].x - w[0].x) / span,
+                abs: tol.abs * 0.5 * ((w[1].x - w[0].x) / span + 1.0 / n),
                 ..tol
             },
             level,
