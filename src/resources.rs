@@ -119,8 +119,7 @@ const EVALS_PER_NUMERIC_G1: f64 = 1e6;
 /// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e), V-groove albedo 12,985
 /// (`cook-torrance-1982`/albedo), average albedo 159,453 per roughness (`e-avg`), DFG
 /// 1,573 (`karis-envbrdf`) + 1,750 for the cloth channel (`filament-dfg` 3,321), Fresnel
-/// albedo 1,111, dielectric BTDF 5,042 (19,551 before the closed-form kinks and nested
-/// Clenshaw–Curtis panels of src/table/dielectric.rs) (all 2026-11-29). Grazing views and near-delta
+/// albedo 1,111, dielectric BTDF 19,551 (all 2026-11-29). Grazing views and near-delta
 /// lobes cost more, smooth wide lobes less; the estimate is a guide, the run-time check of
 /// the same limit ([`Deadline`]) is the guarantee.
 fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
@@ -137,6 +136,9 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Dfg => (1_600.0 + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
         K::KullaConty => (albedo, 160_000.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
+        // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
+        // above was before the closed-form kinks and Clenshaw–Curtis panels of
+        // src/table/dielectric.rs)
         K::DielectricBtdf => (5_100.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths)
