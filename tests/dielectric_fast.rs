@@ -233,3 +233,24 @@ fn grazing_transmission_against_integration_about_the_view() {
     let r = reference::dielectric_rt(alpha, eta, mu, 1e-8);
     assert!((e.value[0] - r.value[0]).abs() <= e.error[0] + r.error);
 }
+
+/// Extreme views, lobes and indices (n·v down to 1e-3, α down to 1e-4, η within 1e-3 of 1
+/// where the critical cone closes onto the view) through the new panels: the estimate stays
+/// within the tolerance, and energy holds — R, T ≥ 0 and R + T ≤ 1 (Smith's normalization,
+/// `model/btdf.rs`) — up to the two estimates.
+#[test]
+fn extreme_parameters_stay_within_tolerance_and_energy() {
+    for &mu in &[1e-3, 0.01, 0.5, 1.0] {
+        for &alpha in &[1e-4, 1e-3, 0.05, 1.0] {
+            for &eta in &[1.0 / 3.0, 0.9, 0.99, 0.999, 1.001, 1.01, 1.5, 3.0] {
+                let e = reflect_transmit(&model(alpha, eta), mu, 1e-6);
+                let [r, t] = e.value;
+                let slack = e.error[0] + e.error[1];
+                assert!(
+                    e.max_error() <= 1e-6 && r >= -slack && t >= -slack && r + t <= 1.0 + slack,
+                    "mu {mu} alpha {alpha} eta {eta}: {e:?}"
+                );
+            }
+        }
+    }
+}
