@@ -240,7 +240,15 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             };
             format!("{outer}{}", crate::integrate::tensor::METHOD)
         }
-        _ => "nested adaptive Gauss-Kronrod (G7/K15) over the half vector: phi in [0, pi] (split at pi/2, doubled by symmetry), theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) with the lobe warp u = asinh(tan theta_h / alpha) (V-groove masking: theta_h and phi ranges also split at the term's kinks); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
+        // V-groove masking with an NDF: the branch-split tensor rule
+        _ => {
+            let outer = match spec.kind {
+                TableKind::AlbedoAvg => "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. ",
+                TableKind::KullaConty => "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. ",
+                _ => "",
+            };
+            format!("{outer}{}", crate::integrate::vgroove::METHOD)
+        }
     };
     let method =
         if spec.kind == TableKind::Dfg && spec.cloth && spec.model.masking == Masking::VGroove {
@@ -262,7 +270,8 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     };
     let method = if kernel {
         format!(
-            "{}. Generic path: {method}",
+            "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
+            crate::integrate::ggx_polar::METHOD,
             crate::integrate::dfg_kernel::METHOD
         )
     } else {

@@ -115,26 +115,44 @@ const SECONDS_PER_CLOSED_FORM_TEXEL: f64 = 1e-6;
 const EVALS_PER_NUMERIC_G1: f64 = 1e6;
 
 /// The typical integrand evaluations per texel of an integrated table kind at the default
-/// tolerance (1e-6), measured with `scripts/bench.sh` on the default presets (evaluations ÷
-/// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e), V-groove albedo 12,985
-/// (`cook-torrance-1982`/albedo), average albedo 159,453 per roughness (`e-avg`), DFG
-/// 1,573 (`karis-envbrdf`) + 1,750 for the cloth channel (`filament-dfg` 3,321), Fresnel
-/// albedo 1,111, dielectric BTDF 19,551 (all 2026-11-29). Grazing views and near-delta
-/// lobes cost more, smooth wide lobes less; the estimate is a guide, the run-time check of
-/// the same limit ([`Deadline`]) is the guarantee.
+/// tolerance (1e-7), measured with `scripts/bench.sh` on the default presets (evaluations ÷
+/// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e before the GGX polar kernel),
+/// V-groove albedo 2,076 (`cook-torrance-1982`/albedo; 12,985 before its fast path,
+/// [`vgroove`](crate::integrate::vgroove); its E_avg 83,000–190,000 per roughness), average
+/// albedo 159,453 per roughness (`e-avg` before the polar kernel), cloth channel 1,750
+/// (`filament-dfg` − `karis-envbrdf`), Fresnel albedo 1,111, dielectric BTDF 19,551 (all
+/// 2026-11-29). GGX with Smith masking goes through the 1D polar kernel
+/// (src/integrate/ggx_polar.rs; 2026-11-29, 23:00 UTC): albedo 83 (`energy-albedo`/e),
+/// average albedo 6,965 per roughness (`e-avg`), DFG 915 (`karis-envbrdf`). Grazing views
+/// and near-delta lobes cost more, smooth wide lobes less; the estimate is a guide, the
+/// run-time check of the same limit ([`Deadline`]) is the guarantee.
 fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
-    use crate::model::Masking;
+    use crate::model::{Masking, NdfKind};
     use crate::table::TableKind as K;
     let spec = &t.spec;
     let vgroove = spec.model.masking == Masking::VGroove;
-    let albedo = if vgroove { 13_000.0 } else { 1_500.0 };
+    let polar = spec.model.ndf == Some(NdfKind::Ggx)
+        && matches!(
+            spec.model.masking,
+            Masking::SmithHeightCorrelated | Masking::SmithSeparable
+        );
+    let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
+    let albedo = if vgroove {
+        2_100.0
+    } else if polar_albedo {
+        100.0
+    } else {
+        1_500.0
+    };
+    let avg = if polar_albedo { 7_000.0 } else { 160_000.0 };
+    let dfg = if polar { 950.0 } else { 1_600.0 };
     // (per texel, per roughness row)
     match spec.kind {
         K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),
         K::Albedo => (albedo, 0.0),
-        K::AlbedoAvg => (160_000.0 * if vgroove { 9.0 } else { 1.0 }, 0.0),
-        K::Dfg => (1_600.0 + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
-        K::KullaConty => (albedo, 160_000.0),
+        K::AlbedoAvg => (avg, 0.0),
+        K::Dfg => (dfg + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
+        K::KullaConty => (albedo, avg),
         K::AlbedoFresnel => (1_200.0, 0.0),
         // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
         // above was before the closed-form kinks and Clenshaw–Curtis panels of

@@ -7,8 +7,10 @@ pub mod cc1d;
 pub mod chebyshev;
 pub mod dfg_kernel;
 pub mod gauss;
+pub mod ggx_polar;
 pub mod hemisphere;
 pub mod monte_carlo;
 pub mod tensor;
+pub mod vgroove;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};

@@ -10,8 +10,10 @@
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
 use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
+use crate::integrate::ggx_polar;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::tensor::integrate_over_l_smooth;
+use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use std::cell::RefCell;
@@ -20,7 +22,8 @@ use std::cell::RefCell;
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
 ///
 /// Smooth maskings use the fast tensor rule ([`integrate_over_l_smooth`], falling back to the
-/// adaptive integrator per texel); the V-groove term's kinks go to the adaptive one directly.
+/// adaptive integrator per texel); the V-groove term, the tensor rule on its smooth branches
+/// ([`integrate_over_l_kinked`], falling back to the adaptive integrator per texel).
 pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
     let g = |n: &Node| {
         let f = spec.cosine_weighted_with(n, 1.0);
@@ -28,7 +31,9 @@ pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64
         [f * (1.0 - fc), f * fc]
     };
     let e = if spec.masking == Masking::VGroove {
-        integrate_over_l(mu, spec.warp(), tol, g)
+        // (F = 1 here, and both channels are at most f·(n·l): the tail cut holds for each)
+        let tail = super::albedo::vgroove_fast_path(spec, 0.0, tol).unwrap_or(TailCut::NONE);
+        integrate_over_l_kinked(mu, spec.warp(), tail, tol, g)
     } else {
         integrate_over_l_smooth(mu, Some(&spec.ndf), tol, g)
     };
@@ -88,9 +93,10 @@ pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
         )
 }
 
-/// [`split_sum`] through the specialised GGX kernel where it applies, with the view setup
-/// of `col` (whose μ must be `mu`); the generic path where it does not apply or its
-/// estimate does not reach `tol` (the kernel's evaluations are counted either way).
+/// [`split_sum`] through the specialised GGX kernels where they apply — the 1D polar one
+/// ([`ggx_polar`]) first, then the 2D one of [`dfg_kernel`] with the view setup of `col`
+/// (whose μ must be `mu`) — and the generic path where they do not apply or their
+/// estimates do not reach `tol` (the kernels' evaluations are counted either way).
 pub fn split_sum_column(
     spec: &Specular,
     col: &Column,
@@ -99,9 +105,13 @@ pub fn split_sum_column(
 ) -> ([f64; 2], [f64; 2], u64) {
     let mut spent = 0;
     if let Some(smith) = kernel_smith(spec) {
-        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+        match ggx_polar::ggx_split_sum(mu, spec.ndf.alpha(), smith, tol) {
             Ok(e) => return (e.value, e.error, e.evals),
             Err(n) => spent = n,
+        }
+        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+            Ok(e) => return (e.value, e.error, e.evals + spent),
+            Err(n) => spent += n,
         }
     }
     let (v, e, n) = split_sum(spec, mu, tol);

@@ -1,0 +1,384 @@
+//! The fast path for hemisphere integrals with Cook–Torrance's V-groove masking term
+//! `G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h))` (Cook & Torrance 1982, eq. 6, after
+//! Torrance & Sparrow 1967): the nested Clenshaw–Curtis tensor rule of
+//! [`tensor`](super::tensor) on pieces of the half-vector domain inside which G is one
+//! smooth branch, so that no rule ever sees a kink.
+//!
+//! **Which branch where.** Same coordinates as [`integrate_over_l`]: view
+//! `v = (sin θv, 0, cos θv)`, half vector at (θh, φ), `tan ψ = tan θv cos φ`, horizon
+//! `θmax = π/4 + ψ/2`. Writing `t = tan θh`, `s = tan ψ`, one has
+//! `v·h = cos θh cos θv (1 + t s)`, hence
+//!
+//! * `gv = 2(n·h)(n·v)/(v·h) = 2/(1 + t s)`, and
+//! * `gl = 2(n·h)(n·l)/(v·h) = 4 cos²θh − gv` (from `n·l = 2(v·h)(n·h) − n·v`),
+//!
+//! so `gl = gv` ⇔ `t = s` (θh = ψ), `gv = 1` ⇔ `θh = π/2 − ψ`, and `gl = 1` ⇔
+//! `θh = (ψ + π/2)/3` (see [`vgroove_kinks`](super::hemisphere::vgroove_kinks), which lists
+//! all three candidates). Of these, only some are branch switches of the min (derived
+//! here): both ratios are 2 at θh = 0, gl decreases through 1 once in `[0, θmax]`, and
+//! gl < gv exactly for θh > ψ. Hence
+//!
+//! * `ψ ≤ π/4`: `G = 1` on `[0, (ψ + π/2)/3]`, `G = gl` on `[(ψ + π/2)/3, θmax]` (for
+//!   0 < ψ ≤ π/4 the crossing at θh = ψ has `gv = gl = 2cos²ψ ≥ 1`, and `gv = 1` lies
+//!   where gl < 1 already);
+//! * `ψ > π/4`: `G = 1` on `[0, π/2 − ψ]`, `G = gv` on `[π/2 − ψ, ψ]`, `G = gl` on
+//!   `[ψ, θmax]`.
+//!
+//! All three switches coincide at ψ = π/4 (θh = π/4), the only place where the inner
+//! integral is not smooth in φ: the φ range is split there, at `cos φ = 1/tan θv` (views
+//! beyond 45°). Each (φ panel, θh piece) is then a smooth 2D integral whose θh ends are
+//! smooth functions of φ, integrated by the nested tensor rule and driver of
+//! [`tensor::refine`](super::tensor) (its error estimate from the nested lower-order
+//! rules, each piece to its share of the tolerance, the estimates summed).
+//!
+//! **Warps.** φ = π/2 + c·sinh s with `c = min(cot θv, 1)` as in the smooth fast path (the
+//! panels are intervals of s); the inner variable of a piece is the lobe warp
+//! `u = asinh(tan θh / α)` mapped linearly from the piece's ends in u.
+//!
+//! **Tail cut.** A narrow lobe seen at a grazing angle makes the pieces long in u (the
+//! middle one reaches u ≈ 7.5 for α = 0.05, μ = 1/64) while the integrand lives in the
+//! first ~2 units of it: the nested rule then spends its nodes on zeros and may not
+//! converge within 65×65 nodes. Where the caller can bound the integrand's tail (a
+//! [`TailCut`], e.g. [`TailCut::beckmann_vgroove`]), u stops at the cut and the bound is
+//! added to the error estimate.
+
+// Channel loops index several same-length arrays at once; iterator chains would hide that.
+#![allow(clippy::needless_range_loop)]
+
+use super::adaptive::Estimate;
+use super::hemisphere::{integrate_over_l, tan_theta_h_max, LobeWarp, Node};
+use super::tensor::{inner_sums, refine, rules, MAX_LEVEL};
+use std::cell::RefCell;
+use std::f64::consts::FRAC_PI_2;
+
+/// What the fast path does, as the sidecar's `quadrature.method` states it.
+pub const METHOD: &str = "V-groove masking split into its smooth branches (G = 1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) in closed form: theta_h split at (psi + pi/2)/3 (tan psi = tan theta_v cos phi <= 1), or at pi/2 - psi and psi (tan psi > 1), phi split where tan psi = 1; on each piece a nested Clenshaw-Curtis tensor rule (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes) over phi = pi/2 + c sinh(s), c = min(cot theta_v, 1), and the lobe warp u = asinh(tan theta_h / alpha) up to the exact horizon pi/4 + psi/2, refined one dimension at a time; error estimate per piece and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)), summed over dimensions and pieces (tolerance shared equally among pieces); Beckmann lobes without a diffuse lobe: u cut where the integrand's tail beyond is provably <= 1e-4 of the tolerance (added to the estimate); a texel any of whose pieces does not reach its share within 65x65 nodes, and every texel of a sheen lobe or under a dielectric Fresnel with eta < 1 (whose total-internal-reflection kink the split does not follow), is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2 and at the kinks' meeting points, theta_h split at the kinks, estimate |K15 - G7| summed over panels); f64 accumulation";
+
+const NMAX: usize = (1 << MAX_LEVEL) + 1;
+
+/// The θh piece of a φ node, as its ends in the lobe variable u.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Piece {
+    /// `[0, u(θa)]`, G = 1.
+    Flat,
+    /// Between the first switch and the second (gv branch, ψ > π/4 only).
+    Middle,
+    /// From the last switch to the horizon (gl branch).
+    Outer,
+}
+
+/// The θh values (as tangents) at which G switches branch for a view with `tan ψ = s`,
+/// in increasing order, none beyond `tan_max`, and how many: one switch for `s ≤ 1`, two
+/// for `s > 1` (module docs).
+#[inline]
+fn switches(s: f64, tan_max: f64) -> ([f64; 2], usize) {
+    if s <= 1.0 {
+        // tan((ψ + π/2)/3)
+        let th = (s.atan() + FRAC_PI_2) / 3.0;
+        ([th.tan().min(tan_max), 0.0], 1)
+    } else {
+        // tan(π/2 − ψ) = 1/s < 1 < s = tan ψ < tan θmax
+        ([1.0 / s, s.min(tan_max)], 2)
+    }
+}
+
+/// The ends `(u_lo, u_hi)` of piece `p` for `tan ψ = s`, lobe scale α and horizon `tan_max`,
+/// none beyond `cap`.
+#[inline]
+fn piece_ends(p: Piece, s: f64, alpha: f64, tan_max: f64, cap: f64) -> (f64, f64) {
+    let (t, n) = switches(s, tan_max);
+    let u = |tan_th: f64| (tan_th / alpha).asinh();
+    let umax = u(tan_max).min(cap);
+    let u = |t: f64| u(t).min(cap);
+    match p {
+        Piece::Flat => (0.0, u(t[0]).min(umax)),
+        Piece::Middle => {
+            let lo = u(t[0]).min(umax);
+            (lo, u(t[1]).clamp(lo, umax))
+        }
+        Piece::Outer => (u(t[n - 1]).min(umax), umax),
+    }
+}
+
+/// Where a lobe's tail may be left out: over the half vectors with
+/// `asinh(tan θh / α) > u` the integrand integrates to at most `mass` (absolute, every
+/// channel), which the fast path adds to its error estimate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TailCut {
+    pub u: f64,
+    pub mass: f64,
+}
+
+impl TailCut {
+    /// No cut.
+    pub const NONE: TailCut = TailCut {
+        u: f64::INFINITY,
+        mass: 0.0,
+    };
+
+    /// The cut for a Beckmann lobe (width α) under the V-groove term with a Fresnel factor
+    /// ≤ 1 and no other lobe, each channel's integrand at most `f·(n·l)` of that BRDF:
+    /// per unit solid angle of h the integrand is `D·G·F·(v·h)/(n·v)` (with
+    /// `dω_l = 4(v·h) dω_h`), and `G ≤ 2(n·h)(n·v)/(v·h)`, so it is at most `2·D·(n·h)`,
+    /// whose integral over `tan θh > T` is `2·exp(−T²/α²)` (the Beckmann distribution of
+    /// tan²θh is exponential: Walter et al. 2007, eq. 28). For a tail of at most `mass`,
+    /// `T/α = sinh u = √ln(2/mass)`.
+    pub fn beckmann_vgroove(mass: f64) -> TailCut {
+        TailCut {
+            u: (2.0 / mass).ln().max(0.0).sqrt().asinh(),
+            mass,
+        }
+    }
+}
+
+/// Per-thread scratch of one piece's tensor rule (as in the smooth fast path).
+#[derive(Default)]
+struct Scratch {
+    vals: Vec<f64>,
+    level: Vec<usize>,
+    scale: Vec<f64>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// The V-groove fast path: `∫ g dω_l` over the upper hemisphere of `l` for a view with
+/// cosine `n_dot_v ∈ (0, 1]` and an NDF lobe of width `alpha` at the normal, `g` being
+/// `f(v, l)·(n·l)` per channel at a half-vector node (as for
+/// [`integrate_over_l`]), with G inside `f` the V-groove term; u beyond `tail.u` left out
+/// (and `tail.mass` added to the estimate). `Err(evaluations spent)` if a piece's nested
+/// rule does not reach its share of `tol_abs` within the tensor rule's limits.
+pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
+    n_dot_v: f64,
+    alpha: f64,
+    tail: TailCut,
+    tol_abs: f64,
+    g: F,
+) -> Result<Estimate<N>, u64> {
+    let mu_v = n_dot_v.min(1.0);
+    let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
+    let tan_v = sin_v / mu_v;
+    let c = if sin_v > 0.0 {
+        (mu_v / sin_v).min(1.0)
+    } else {
+        1.0
+    };
+    let big_s = (FRAC_PI_2 / c).asinh();
+    // φ panels in s: split where tan ψ = 1 (cos φ = 1/tan θv), left of it ψ > π/4
+    let mut panels: Vec<(f64, f64, &[Piece])> = Vec::with_capacity(2);
+    const TWO: &[Piece] = &[Piece::Flat, Piece::Outer];
+    const THREE: &[Piece] = &[Piece::Flat, Piece::Middle, Piece::Outer];
+    if tan_v > 1.0 {
+        let phi_star = (1.0 / tan_v).acos();
+        let s_star = ((phi_star - FRAC_PI_2) / c).asinh();
+        panels.push((-big_s, s_star, THREE));
+        panels.push((s_star, big_s, TWO));
+    } else {
+        panels.push((-big_s, big_s, TWO));
+    }
+    let n_pieces: usize = panels.iter().map(|p| p.2.len()).sum();
+    let tol_piece = (tol_abs - tail.mass) / n_pieces as f64;
+    let mut total = Estimate::<N>::zero();
+    total.error = [tail.mass; N];
+    let mut spent = 0u64;
+    for &(s0, s1, pieces) in &panels {
+        for &piece in pieces {
+            let r = SCRATCH.with(|sc| {
+                let sc = &mut *sc.borrow_mut();
+                let lobe = (alpha, tail.u);
+                piece_rule(
+                    sc,
+                    mu_v,
+                    sin_v,
+                    tan_v,
+                    c,
+                    (s0, s1),
+                    piece,
+                    lobe,
+                    tol_piece,
+                    &g,
+                )
+            });
+            match r {
+                Ok(e) => {
+                    for k in 0..N {
+                        total.value[k] += e.value[k];
+                        total.error[k] += e.error[k];
+                    }
+                    spent += e.evals;
+                }
+                Err(n) => return Err(spent + n),
+            }
+        }
+    }
+    total.evals = spent;
+    Ok(total)
+}
+
+/// One piece's tensor rule over `s ∈ [s0, s1]` (φ = π/2 + c sinh s, doubled by mirror
+/// symmetry) and the piece's u range, through [`refine`].
+#[allow(clippy::too_many_arguments)]
+fn piece_rule<const N: usize, F: Fn(&Node) -> [f64; N]>(
+    sc: &mut Scratch,
+    mu_v: f64,
+    sin_v: f64,
+    tan_v: f64,
+    c: f64,
+    (s0, s1): (f64, f64),
+    piece: Piece,
+    (alpha, cap): (f64, f64),
+    tol: f64,
+    g: &F,
+) -> Result<Estimate<N>, u64> {
+    let r = rules();
+    sc.vals.resize(NMAX * NMAX * N, 0.0);
+    sc.level.clear();
+    sc.level.resize(NMAX, usize::MAX);
+    sc.scale.resize(NMAX, 0.0);
+    let (s_mid, s_half) = (0.5 * (s0 + s1), 0.5 * (s1 - s0));
+    let fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
+        let have = sc.level[i];
+        if have != usize::MAX && have >= ku {
+            return;
+        }
+        let s = s_mid + s_half * r.x[i];
+        let phi = FRAC_PI_2 + c * s.sinh();
+        let cp = phi.cos();
+        // dφ/dx = c cosh(s)·s_half; ×2 for φ ∈ [0, π] standing for the whole circle
+        let dphi_dx = 2.0 * c * s.cosh() * s_half;
+        let tan_max = tan_theta_h_max(tan_v, cp);
+        let (u0, u1) = piece_ends(piece, tan_v * cp, alpha, tan_max, cap);
+        let half = 0.5 * (u1 - u0);
+        sc.scale[i] = half * dphi_dx;
+        let stride = 1usize << (MAX_LEVEL - ku);
+        let old_stride = if have == usize::MAX {
+            0
+        } else {
+            1usize << (MAX_LEVEL - have)
+        };
+        let base = i * NMAX * N;
+        let mut j = 0;
+        while j < NMAX {
+            if old_stride == 0 || j % old_stride != 0 {
+                let out = &mut sc.vals[base + j * N..base + j * N + N];
+                if half > 0.0 {
+                    let u = u0 + half * (1.0 - r.x[j]);
+                    let t = alpha * u.sinh();
+                    let c2 = 1.0 / (1.0 + t * t);
+                    let cos_h = c2.sqrt();
+                    let sin_h = t * cos_h;
+                    let n = Node::at(mu_v, sin_v, cp, sin_h, cos_h);
+                    if n.n_dot_l <= 0.0 || n.v_dot_h <= 0.0 {
+                        out.fill(0.0);
+                    } else {
+                        // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh; dω_l = 4(v·h) dω_h
+                        let jac = 4.0 * n.v_dot_h * sin_h * alpha * u.cosh() * c2;
+                        let y = g(&n);
+                        for k in 0..N {
+                            out[k] = y[k] * jac;
+                        }
+                    }
+                    *evals += 1;
+                } else {
+                    // an empty piece (its ends met at a panel end): nothing to evaluate
+                    out.fill(0.0);
+                }
+            }
+            j += stride;
+        }
+        sc.level[i] = ku;
+    };
+    let inner = |sc: &mut Scratch, i: usize, ku: usize| -> [[f64; N]; 3] {
+        inner_sums(&sc.vals[i * NMAX * N..(i + 1) * NMAX * N], sc.scale[i], ku)
+    };
+    refine(sc, tol, fill, inner)
+}
+
+/// `∫ g dω_l` for an integrand with the V-groove term: the fast path above when the lobe
+/// warp is `TanOverScaleVGroove(α)`, or — for other warps, or where a piece does not reach
+/// its tolerance share — the adaptive integrator
+/// ([`integrate_over_l`], kinks split there too), the abandoned attempt's evaluations
+/// counted.
+pub fn integrate_over_l_kinked<const N: usize, F: Fn(&Node) -> [f64; N]>(
+    n_dot_v: f64,
+    warp: LobeWarp,
+    tail: TailCut,
+    tol_abs: f64,
+    g: F,
+) -> Estimate<N> {
+    let mut spent = 0;
+    if let LobeWarp::TanOverScaleVGroove(alpha) = warp {
+        match integrate_over_l_vgroove_cc(n_dot_v, alpha, tail, tol_abs, &g) {
+            Ok(e) => return e,
+            Err(n) => spent = n,
+        }
+    }
+    let mut e = integrate_over_l(n_dot_v, warp, tol_abs, g);
+    e.evals += spent;
+    e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::masking::vgroove;
+    use std::f64::consts::PI;
+
+    /// Inside every piece G is one branch: at 200 points strictly inside each piece, for
+    /// views and azimuths on both sides of ψ = π/4, G equals the piece's branch (1, gv or
+    /// gl) to rounding (1e-13: a few operations on O(1) numbers), and the pieces tile
+    /// [0, θmax] in order.
+    #[test]
+    fn each_piece_is_one_branch() {
+        let alpha = 1.0; // u = asinh(tan θh): any positive α gives the same θh ends
+        let mut seen = [0usize; 2];
+        for &mu in &[1.0, 0.9, 0.6, 0.3, 0.05, 0.001] {
+            let sin_v = (1.0f64 - mu * mu).sqrt();
+            let tan_v = sin_v / mu;
+            for k in 0..=64 {
+                let phi = PI * k as f64 / 64.0;
+                let cp = phi.cos();
+                let s = tan_v * cp;
+                let tan_max = tan_theta_h_max(tan_v, cp);
+                let pieces: &[Piece] = if s > 1.0 {
+                    &[Piece::Flat, Piece::Middle, Piece::Outer]
+                } else {
+                    &[Piece::Flat, Piece::Outer]
+                };
+                seen[(s > 1.0) as usize] += 1;
+                assert_eq!(pieces.len(), switches(s, tan_max).1 + 1);
+                let mut prev = 0.0;
+                for &p in pieces {
+                    let (u0, u1) = piece_ends(p, s, alpha, tan_max, f64::INFINITY);
+                    assert!(u0 == prev && u1 >= u0, "mu={mu} phi={phi} {p:?}");
+                    prev = u1;
+                    for m in 1..200 {
+                        let u = u0 + (u1 - u0) * m as f64 / 200.0;
+                        let t = alpha * u.sinh();
+                        let cos_h = 1.0 / (1.0 + t * t).sqrt();
+                        let sin_h = t * cos_h;
+                        let n = Node::at(mu, sin_v, cp, sin_h, cos_h);
+                        if n.n_dot_l <= 0.0 {
+                            continue;
+                        }
+                        let gv = 2.0 * n.n_dot_h * n.n_dot_v / n.v_dot_h;
+                        let gl = 2.0 * n.n_dot_h * n.n_dot_l / n.v_dot_h;
+                        let branch = match p {
+                            Piece::Flat => 1.0,
+                            Piece::Middle => gv,
+                            Piece::Outer => gl,
+                        };
+                        let gg = vgroove(n.n_dot_v, n.n_dot_l, n.n_dot_h, n.v_dot_h);
+                        assert!(
+                            (gg - branch).abs() <= 1e-13,
+                            "mu={mu} phi={phi} {p:?} u={u}: G={gg}, branch {branch}"
+                        );
+                    }
+                }
+                assert_eq!(prev, (tan_max / alpha).asinh());
+            }
+        }
+        assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
+    }
+}
