@@ -223,7 +223,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::METHOD.into()
         }
-        TableKind::DielectricBtdf => "nested adaptive Gauss-Kronrod (G7/K15) over the micro-normal h: phi in [0, pi] (split at pi/2, doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30), with panel boundaries at the reflected direction's horizon and at the critical angle (eta < 1); error estimate |K15 - G7| summed over panels; f64 accumulation".into(),
+        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation".into(),
         TableKind::Albedo
         | TableKind::AlbedoAvg
         | TableKind::Dfg

@@ -154,7 +154,10 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Dfg => (dfg + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
         K::KullaConty => (albedo, avg),
         K::AlbedoFresnel => (1_200.0, 0.0),
-        K::DielectricBtdf => (20_000.0, 0.0),
+        // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
+        // above was before the closed-form kinks and Clenshaw–Curtis panels of
+        // src/table/dielectric.rs)
+        K::DielectricBtdf => (5_100.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths)
         K::ClassicAlbedo => (15_000.0, 0.0),

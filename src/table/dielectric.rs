@@ -3,25 +3,57 @@
 //! [`crate::model::btdf`]) over (cos θv; roughness; η).
 //!
 //! The integrals run over the micro-normal h in the hemisphere about n, with v in the
-//! xz-plane and φ ∈ [0, π] doubled by symmetry, split at φ = π/2; the inner variable is the
-//! lobe warp u = asinh(tan θh/α) of `hemisphere.rs`. The inner range ends where v·h = 0
+//! xz-plane and φ ∈ [0, π] doubled by symmetry; the inner variable is the lobe warp
+//! u = asinh(tan θh/α) of `hemisphere.rs`. The inner range ends where v·h = 0
 //! (tan θh = n·v/(sin θv (−cos φ)) for cos φ < 0) or, where h reaches the equator with
 //! v·h > 0, at u = 30 (the tail of the GGX measure beyond is < 4α e^(−30)/(π n·v) < 1e-12
-//! for n·v ≥ 1e-3). Known kinks are panel boundaries: the reflected direction's horizon
-//! (tan θh = `tan_theta_h_max`, exact) and, for η < 1, the critical angle v·h = √(1 − η²)
-//! (v·h = A cos(θh − ψ), A = √((n·v)² + sin²θv cos²φ), tan ψ = sin θv cos φ/(n·v)). The
-//! transmitted direction's horizon is left to the adaptive refinement (G1 vanishes there
-//! continuously).
+//! for n·v ≥ 1e-3).
+//!
+//! **Kinks are panel boundaries, in both variables.** Inside a panel the integrand is
+//! smooth, so every panel is first integrated by nested Clenshaw–Curtis
+//! ([`crate::integrate::cc1d`], 9 to 129 nodes, geometric convergence) and only where its
+//! estimate does not reach the panel's share of the tolerance by adaptive Gauss–Kronrod.
+//! The inner (u) boundaries at a given φ:
+//!
+//! * the reflected direction's horizon n·l_r = 0 (tan θh = `tan_theta_h_max`);
+//! * for η < 1, the critical angle v·h = c = √(1 − η²), where F has a square-root kink:
+//!   v·h = A cos(θh − ψ), A = √((n·v)² + sin²θv cos²φ), tan ψ = sin θv cos φ/(n·v), so
+//!   θh = ψ ± arccos(c/A); those panels are integrated in t with u = end ± (b − a) t²;
+//! * for η < 1, the transmitted direction's horizon n·l_t = 0, in closed form: the
+//!   refraction l_t = (c/η − cos θt) h − v/η (Walter eq. 40) gives v + η l_t = (c − η cos θt) h,
+//!   and c > η cos θt whenever η < 1, so h = s/|s| with s = v + η l_t. For a horizontal
+//!   l_t = (cos β, sin β, 0), s = (sin θv + η cos β, η sin β, n·v): the projections of
+//!   these h onto the plane z = n·v lie on the circle of radius η about (sin θv, 0). The ray
+//!   at azimuth φ meets it at ρ = sin θv cos φ ± √(η² − sin²θv sin²φ), tan θh = ρ/(n·v), and
+//!   the point is a refraction (not total internal reflection, l_t·h < 0) iff
+//!   v·l_t = sin θv (ρ cos φ − sin θv)/η < −η. For η ≥ 1, c < η cos θt always, h would be
+//!   ∝ −s with n·h = −n·v < 0: no transmitted direction reaches the horizon before the
+//!   equator.
+//!
+//! The outer (φ) boundaries are where the inner boundaries appear, vanish or cross, each a
+//! kink of the inner integral as a function of φ: π/2 (v·h = 0 reaches the equator) and, for
+//! η < 1, (i) where the line of azimuth φ touches the critical cone, A(φ) = c, which is also
+//! where the transmitted horizon's circle is tangent to that line (sin φ = η/sin θv) and so
+//! where its crossing ends; a square-root kink, integrated in t as above; (ii) where the
+//! critical cone crosses the reflected horizon, l_r horizontal with v·l_r = 2c² − 1:
+//! sin θv cos β = 2c² − 1, φ = atan2(sin β, sin θv + cos β); (iii) where it crosses the
+//! equator, h = (cos φ, sin φ, 0): cos φ = c/sin θv.
 
 use super::{TableSpec, TexelResult};
+use crate::integrate::cc1d::cc_or_adaptive;
 use crate::integrate::hemisphere::{nested_tolerances, tan_theta_h_max};
-use crate::integrate::{integrate, Estimate, Tolerance};
+use crate::integrate::{Estimate, Tolerance};
 use crate::model::btdf::{MicroNormal, RoughDielectric};
 use crate::model::{Fresnel, Ndf};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Upper end of the warped inner variable where the range is not cut by v·h = 0.
 const U_CAP: f64 = 30.0;
+
+/// Finest nested Clenshaw–Curtis level of an inner (u) panel (129 nodes) and of an outer
+/// (φ) panel, whose nodes are inner integrals (65 nodes).
+const INNER_LEVEL: usize = 7;
+const OUTER_LEVEL: usize = 6;
 
 /// A panel boundary; `singular` marks a square-root kink there (the critical angle), which
 /// the panels on either side remove by the substitution x = end ± (b − a) t².
@@ -31,22 +63,22 @@ struct Break {
     singular: bool,
 }
 
-/// ∫ₐᵇ f over one panel to absolute tolerance `tol`. A square-root behaviour
-/// f ~ √(x − a) at a singular end becomes smooth under x = a + (b − a) t²,
-/// dx = 2(b − a) t dt (likewise at b); with both ends singular the panel is halved first.
-/// Without it the proportional tolerance share would bisect towards the kink down to the
-/// maximum depth (a panel of width h next to it errs by ~h^1.5 ≫ tol·h).
+/// ∫ₐᵇ f over one panel to absolute tolerance `tol` ([`cc_or_adaptive`] up to `level`). A
+/// square-root behaviour f ~ √(x − a) at a singular end becomes smooth under
+/// x = a + (b − a) t², dx = 2(b − a) t dt (likewise at b); with both ends singular the panel
+/// is halved first. Without it the rule would converge only algebraically towards the kink.
 fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     f: &mut F,
     a: Break,
     b: Break,
     tol: Tolerance,
+    level: usize,
 ) -> Estimate<N> {
     let (x0, x1) = (a.x, b.x);
     let w = x1 - x0;
     match (a.singular, b.singular) {
-        (false, false) => integrate(&mut *f, x0, x1, tol),
-        (true, false) => integrate(
+        (false, false) => cc_or_adaptive(&mut *f, x0, x1, tol, level),
+        (true, false) => cc_or_adaptive(
             |t: f64| {
                 let mut y = f(x0 + w * t * t);
                 y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
@@ -55,8 +87,9 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
             0.0,
             1.0,
             tol,
+            level,
         ),
-        (false, true) => integrate(
+        (false, true) => cc_or_adaptive(
             |t: f64| {
                 let mut y = f(x1 - w * t * t);
                 y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
@@ -65,6 +98,7 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
             0.0,
             1.0,
             tol,
+            level,
         ),
         (true, true) => {
             let m = Break {
@@ -75,8 +109,8 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
                 abs: 0.5 * tol.abs,
                 ..tol
             };
-            let mut e = panel(f, a, m, half);
-            let r = panel(f, m, b, half);
+            let mut e = panel(f, a, m, half, level);
+            let r = panel(f, m, b, half, level);
             for c in 0..N {
                 e.value[c] += r.value[c];
                 e.error[c] += r.error[c];
@@ -87,11 +121,16 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     }
 }
 
-/// Integrates over the panels between sorted breakpoints, sharing `tol.abs` by length.
+/// Integrates over the panels between sorted breakpoints. `tol.abs` is shared half by
+/// length and half equally among the n non-empty panels (shares sum to `tol.abs`): by
+/// length alone a short panel next to a kink, or the lobe's panel in front of the long
+/// exponential tail up to u = 30, would get a tiny share and need the finest rule for
+/// nothing.
 fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
     mut f: F,
     mut breaks: Vec<Break>,
     tol: Tolerance,
+    level: usize,
 ) -> Estimate<N> {
     breaks.sort_by(|a, b| a.x.total_cmp(&b.x));
     let span = breaks.last().map_or(0.0, |l| l.x) - breaks.first().map_or(0.0, |f| f.x);
@@ -99,6 +138,7 @@ fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
     if span <= 0.0 {
         return total;
     }
+    let n = breaks.windows(2).filter(|w| w[1].x > w[0].x).count() as f64;
     for w in breaks.windows(2) {
         if w[1].x <= w[0].x {
             continue;
@@ -108,9 +148,10 @@ fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
             w[0],
             w[1],
             Tolerance {
-                abs: tol.abs * (w[1].x - w[0].x) / span,
+                abs: tol.abs * 0.5 * ((w[1].x - w[0].x) / span + 1.0 / n),
                 ..tol
             },
+            level,
         );
         for c in 0..N {
             total.value[c] += e.value[c];
@@ -119,6 +160,59 @@ fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
         total.evals += e.evals;
     }
     total
+}
+
+/// tan θh of the micro-normal at azimuth φ (`cos_phi`, `sin_phi` ≥ 0) whose refracted
+/// direction is horizontal, n·l_t = 0, if there is one (η < 1; module docs).
+pub fn transmitted_horizon(
+    eta: f64,
+    mu: f64,
+    sin_v: f64,
+    cos_phi: f64,
+    sin_phi: f64,
+) -> Option<f64> {
+    let disc = eta * eta - sin_v * sin_v * sin_phi * sin_phi;
+    if eta >= 1.0 || disc < 0.0 || mu <= 0.0 {
+        return None;
+    }
+    let q = disc.sqrt();
+    [sin_v * cos_phi - q, sin_v * cos_phi + q]
+        .into_iter()
+        .find(|&rho| rho > 0.0 && sin_v * (rho * cos_phi - sin_v) < -eta * eta)
+        .map(|rho| rho / mu)
+}
+
+/// The azimuths in (0, π) where the inner integral of `reflect_transmit` has a kink
+/// (module docs), with whether it is a square-root kink; π/2 first.
+pub fn phi_breaks(eta: f64, mu: f64) -> Vec<(f64, bool)> {
+    let mu = mu.min(1.0);
+    let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
+    let mut out = vec![(FRAC_PI_2, false)];
+    if eta >= 1.0 || sin_v <= 0.0 {
+        return out;
+    }
+    let c = (1.0 - eta * eta).sqrt();
+    let mut push = |p: f64, singular: bool| {
+        if p > 0.0 && p < PI && (p - FRAC_PI_2).abs() > 1e-12 {
+            out.push((p, singular));
+        }
+    };
+    // (i) A(φ) = c: the critical cone touches the line of azimuth φ
+    if c > mu {
+        let x = ((c * c - mu * mu).sqrt() / sin_v).min(1.0);
+        push(x.acos(), true);
+        push(PI - x.acos(), true);
+    }
+    // (ii) the critical cone meets the reflected horizon
+    let cb = (2.0 * c * c - 1.0) / sin_v;
+    if cb.abs() < 1.0 {
+        push((1.0 - cb * cb).sqrt().atan2(sin_v + cb), false);
+    }
+    // (iii) the critical cone meets the equator
+    if c < sin_v {
+        push((c / sin_v).acos(), false);
+    }
+    out
 }
 
 /// `[R, T]` at a view with n·v = `mu`, to absolute tolerance `tol` per channel.
@@ -132,14 +226,18 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
     } else {
         None
     };
-    // budget as in `hemisphere::integrate_over_l`: half outer (over [0, π], doubled by
-    // symmetry), half inner
-    let (inner_tol, outer_tol) = nested_tolerances(tol);
+    // budget as in `hemisphere::integrate_over_l`: half outer, half inner; the outer
+    // integral over [0, π] is doubled by symmetry, so it gets half the outer share
+    let (inner_tol, outer_whole) = nested_tolerances(tol);
+    let outer_tol = Tolerance {
+        abs: outer_whole.abs / 2.0,
+        ..outer_whole
+    };
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);
     let to_u = |t: f64| (t / alpha).asinh().min(U_CAP);
     let phi_integrand = |phi: f64| -> [f64; 2] {
-        let cp = phi.cos();
+        let (sp, cp) = phi.sin_cos();
         let u_end = if cp < 0.0 && sin_v > 0.0 {
             to_u(mu / (sin_v * -cp))
         } else {
@@ -147,10 +245,12 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
         };
         let brk = |x: f64, singular: bool| Break { x, singular };
         let mut breaks = vec![brk(0.0, false), brk(u_end, false)];
-        let ur = to_u(tan_theta_h_max(tan_v, cp));
-        if ur > 0.0 && ur < u_end {
-            breaks.push(brk(ur, false));
-        }
+        let mut inside = |u: f64, singular: bool| {
+            if u > 0.0 && u < u_end {
+                breaks.push(brk(u, singular));
+            }
+        };
+        inside(to_u(tan_theta_h_max(tan_v, cp)), false);
         if let Some(c) = crit {
             let a = (mu * mu + sin_v * sin_v * cp * cp).sqrt();
             if c < a {
@@ -158,60 +258,14 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
                 let d = (c / a).acos();
                 for th in [psi - d, psi + d] {
                     if th > 0.0 && th < FRAC_PI_2 {
-                        let u = to_u(th.tan());
-                        if u > 0.0 && u < u_end {
-                            breaks.push(brk(u, true));
-                        }
+                        inside(to_u(th.tan()), true);
                     }
                 }
             }
-        }
-        // the transmitted direction's horizon n·l_t = 0 (a kink: T's G1 vanishes linearly
-        // there): located by a sign scan of n·l_t on a fixed grid in u, refined by bisection
-        // to rounding; two crossings within one grid step are left to the adaptive rule
-        let micro = |u: f64| {
-            let t = alpha * u.sinh();
-            let c2 = 1.0 / (1.0 + t * t);
-            let cos_h = c2.sqrt();
-            let sin_h = t * cos_h;
-            MicroNormal {
-                n_dot_h: cos_h,
-                sin2_h: sin_h * sin_h,
-                v_dot_h: sin_v * sin_h * cp + mu * cos_h,
+            // the transmitted direction's horizon (a kink: T's G1 vanishes linearly there)
+            if let Some(t) = transmitted_horizon(m.eta, mu, sin_v, cp, sp) {
+                inside(to_u(t), false);
             }
-        };
-        let side = |u: f64| -> i8 {
-            let h = micro(u);
-            if h.v_dot_h <= 0.0 {
-                return 0;
-            }
-            match m.n_dot_lt(mu, &h) {
-                Some(x) if x < 0.0 => -1,
-                Some(_) => 1,
-                None => 0,
-            }
-        };
-        const SCAN: usize = 48;
-        let mut prev = (0.0, side(0.0));
-        for k in 1..=SCAN {
-            let u = u_end * k as f64 / SCAN as f64;
-            let cur = (u, side(u));
-            if prev.1 * cur.1 < 0 {
-                let (mut lo, mut hi) = (prev.0, cur.0);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    if !(mid > lo && mid < hi) {
-                        break;
-                    }
-                    if side(mid) == prev.1 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                breaks.push(brk(0.5 * (lo + hi), false));
-            }
-            prev = cur;
         }
         let e = panels(
             |u: f64| {
@@ -231,21 +285,15 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
             },
             breaks,
             inner_tol,
+            INNER_LEVEL,
         );
         inner_err.set(inner_err.get().max(e.max_error()));
         inner_evals.set(inner_evals.get() + e.evals);
         e.value
     };
-    // outer panels: [0, π/2, π], plus (η < 1) the azimuths where the critical cone
-    // v·h = √(1 − η²) touches the range of v·h along θh (A(φ) = √(1 − η²)): there the
-    // inner integral's dependence on φ has a square-root kink
-    let mut phi_breaks = vec![
+    let mut breaks = vec![
         Break {
             x: 0.0,
-            singular: false,
-        },
-        Break {
-            x: FRAC_PI_2,
             singular: false,
         },
         Break {
@@ -253,20 +301,12 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
             singular: false,
         },
     ];
-    if let Some(c) = crit {
-        if sin_v > 0.0 && c > mu {
-            let x = ((c * c - mu * mu).sqrt() / sin_v).min(1.0);
-            for p in [x.acos(), PI - x.acos()] {
-                if p > 0.0 && p < PI && (p - FRAC_PI_2).abs() > 1e-12 {
-                    phi_breaks.push(Break {
-                        x: p,
-                        singular: true,
-                    });
-                }
-            }
-        }
-    }
-    let e = panels(phi_integrand, phi_breaks, outer_tol);
+    breaks.extend(
+        phi_breaks(m.eta, mu)
+            .into_iter()
+            .map(|(x, singular)| Break { x, singular }),
+    );
+    let e = panels(phi_integrand, breaks, outer_tol, OUTER_LEVEL);
     let mut total = Estimate::<2>::zero();
     for c in 0..2 {
         total.value[c] = 2.0 * e.value[c];
