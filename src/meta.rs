@@ -266,6 +266,12 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty => {
             crate::table::albedo::uses_kernel(&spec.model)
         }
+        // Schlick slices of GGX + Smith: E = F0·A + B from the polar split sum
+        TableKind::AlbedoFresnel => {
+            matches!(spec.axes[2].quantity, Quantity::Fresnel(q) if q.is_f0())
+                && spec.model.diffuse_weight == 0.0
+                && crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
+        }
         _ => false,
     };
     let method = if kernel {

@@ -55,9 +55,36 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
         });
         return (e.value, e.error, e.evals);
     }
+    let mut spent = 0;
+    // GGX + Smith with Schlick's Fresnel and no diffuse lobe: F is linear in F0, so
+    // E = F0·A + B with A, B the split-sum channels (Karis 2013, eq. 8), each to tol/2
+    if let Some(s) = brdf
+        .specular
+        .as_ref()
+        .filter(|_| brdf.diffuse_weight == 0.0 && mu > 0.0)
+    {
+        if let (crate::model::Fresnel::Schlick { f0 }, Some(smith)) = (s.fresnel, polar_smith(s)) {
+            if f0.abs() <= 1.0 {
+                match crate::integrate::ggx_polar::ggx_split_sum(
+                    mu,
+                    s.ndf.alpha(),
+                    smith,
+                    0.5 * tol,
+                ) {
+                    Ok(e) => {
+                        return (
+                            [f0 * e.value[0] + e.value[1]],
+                            [f0.abs() * e.error[0] + e.error[1]],
+                            e.evals,
+                        )
+                    }
+                    Err(n) => spent = n,
+                }
+            }
+        }
+    }
     // GGX + Smith and Charlie + Ashikhmin lobes with F = 1 and no diffuse lobe: the
     // specialised kernels first (E = A + B of the split sum, errors added)
-    let mut spent = 0;
     if let Some(s) = brdf.specular.as_ref().filter(|s| {
         brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
     }) {
@@ -70,8 +97,8 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
         };
         if let Some(smith) = smith {
             match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
-                Ok(e) => return (e.value, e.error, e.evals),
-                Err(n) => spent = n,
+                Ok(e) => return (e.value, e.error, e.evals + spent),
+                Err(n) => spent += n,
             }
             match ggx_split_sum(&Column::new(mu), s.ndf.alpha(), smith, 0.5 * tol) {
                 Ok(e) => {
@@ -134,6 +161,17 @@ pub fn uses_kernel(model: &super::ModelSpec) -> bool {
                 Masking::SmithHeightCorrelated | Masking::SmithSeparable
             ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
         )
+}
+
+/// The Smith form of the polar GGX kernel for this lobe, if it applies.
+fn polar_smith(s: &crate::model::Specular) -> Option<crate::integrate::dfg_kernel::Smith> {
+    use crate::integrate::dfg_kernel::Smith;
+    use crate::model::NdfKind;
+    match (s.ndf.kind(), s.masking) {
+        (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
+        (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+        _ => None,
+    }
 }
 
 /// [`directional_albedo`] by the adaptive integrator alone.
