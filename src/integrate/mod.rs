@@ -8,6 +8,7 @@ pub mod dfg_kernel;
 pub mod gauss;
 pub mod hemisphere;
 pub mod monte_carlo;
+pub mod sheen_l;
 pub mod tensor;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};
