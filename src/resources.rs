@@ -133,7 +133,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),
         K::Albedo => (albedo, 0.0),
         K::AlbedoAvg => (160_000.0 * if vgroove { 9.0 } else { 1.0 }, 0.0),
-        K::Dfg => (1_600.0 + if spec.cloth { 1_750.0 } else { 0.0 }, 0.0),
+        K::Dfg => (1_600.0 + if spec.cloth { 1_600.0 } else { 0.0 }, 0.0),
         K::KullaConty => (albedo, 160_000.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
         K::DielectricBtdf => (20_000.0, 0.0),

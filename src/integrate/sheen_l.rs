@@ -30,7 +30,9 @@
 //! (where l is opposite v near the horizon and h passes the normal); there
 //! `x = C/(C + ρ²S)`, `dφ/dt = ρ/(C + ρ²S)`, `C = cos²(t/2)`, `S = sin²(t/2)`. Both rules
 //! are nested (halving the step) and stop when `|T_m − T_{m/2}|` (the error of the coarser
-//! rule) times the node's outer weight is below `tol/20`.
+//! rule) times the node's outer weight is below `tol/20`, or below 1e-14 of `T_m` (rounding);
+//! that difference (plus the cut-off bound and 1e-15 of the value for rounding) is the
+//! node's error bound.
 //!
 //! **Outer rule (μl).** The integrand peaks at the horizon (μl → 0: `s0` is largest at θl =
 //! π/2, decaying like `exp(−k(κε + ε²/(2(1 + sv))))` in `ε = π/2 − θl`, `κ = μv/(1 + sv)`)
