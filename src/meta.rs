@@ -283,6 +283,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     } else {
         method
     };
+    let method = if spec.kind == TableKind::Dfg && spec.cloth {
+        format!(
+            "{method}. Cloth channel B, alpha < 1/16: first {}",
+            crate::integrate::sheen_l::METHOD
+        )
+    } else {
+        method
+    };
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
         if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }

@@ -10,6 +10,7 @@ pub mod gauss;
 pub mod ggx_polar;
 pub mod hemisphere;
 pub mod monte_carlo;
+pub mod sheen_l;
 pub mod tensor;
 pub mod vgroove;
 

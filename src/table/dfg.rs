@@ -12,6 +12,7 @@ use super::{DfgLayout, TableSpec, TexelResult};
 use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
 use crate::integrate::ggx_polar;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
+use crate::integrate::sheen_l;
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
@@ -162,18 +163,34 @@ impl Ctx {
         };
         if self.cloth {
             let alpha = self.axes[1].alpha(j).expect("roughness axis");
-            let (v, e, n) = match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
-                Ok(e) => (e.value[0], e.error[0], e.evals),
-                Err(spent) => {
-                    let (v, e, n) = sheen_albedo(alpha, mu, tol);
-                    (v, e, n + spent)
-                }
-            };
+            let (v, e, n) = cloth_texel(col, cache, alpha, tol);
             r.value.push(v);
             r.error.push(e);
             r.evals += n;
         }
         r
+    }
+}
+
+/// The cloth channel at one texel: narrow lobes (α < [`sheen_l::MAX_ALPHA`]) in
+/// light-direction coordinates ([`sheen_l`]) first, then (wider lobes, or where that does
+/// not reach `tol`) the half-vector kernel with the column's shared node data, then the
+/// generic path; the evaluations of abandoned attempts are counted. A pure function of
+/// (μ, α, tol): the same bits whether the texel is computed alone or in its column.
+fn cloth_texel(col: &Column, cache: &RefCell<SheenCache>, alpha: f64, tol: f64) -> (f64, f64, u64) {
+    let mut spent = 0;
+    if alpha < sheen_l::MAX_ALPHA {
+        match sheen_l::charlie_sheen_l(col.mu(), alpha, tol) {
+            Ok(e) => return (e.value[0], e.error[0], e.evals),
+            Err(n) => spent = n,
+        }
+    }
+    match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
+        Ok(e) => (e.value[0], e.error[0], e.evals + spent),
+        Err(n) => {
+            let (v, e, m) = sheen_albedo(alpha, col.mu(), tol);
+            (v, e, m + n + spent)
+        }
     }
 }
 
