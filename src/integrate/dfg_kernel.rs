@@ -42,7 +42,7 @@
 
 use super::adaptive::Estimate;
 use super::hemisphere::tan_theta_h_max;
-use super::tensor::{rules as cc_rules, MAX_LEVEL};
+use super::tensor::{rules as cc_rules, PhiWarp, MAX_LEVEL};
 use std::cell::RefCell;
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 
@@ -74,15 +74,13 @@ impl Column {
     /// The φ nodes of [`tensor`](super::tensor)'s fast path for view cosine `mu` ∈ (0, 1].
     pub fn new(mu: f64) -> Column {
         let r = cc_rules();
-        let mu_v = mu.min(1.0);
-        let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
-        let tan_v = sin_v / mu_v;
-        let c = if sin_v > 0.0 {
-            (mu_v / sin_v).min(1.0)
-        } else {
-            1.0
-        };
-        let big_s = (FRAC_PI_2 / c).asinh();
+        let PhiWarp {
+            mu_v,
+            sin_v,
+            tan_v,
+            c,
+            big_s,
+        } = PhiWarp::new(mu);
         let mut cos_phi = vec![0.0; NMAX];
         let mut dphi = vec![0.0; NMAX];
         let mut tmax = vec![0.0; NMAX];

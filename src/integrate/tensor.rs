@@ -150,16 +150,58 @@ impl InnerWarp {
     }
 }
 
+/// The view data and φ warp of the fast paths (this file's, the specialised kernels' and the
+/// V-groove path's): `φ = π/2 + c sinh s`, `s ∈ [−S, S]`, `c = min(cot θv, 1)`,
+/// `S = asinh(π/(2c))`, which clusters φ nodes at π/2 for grazing views.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PhiWarp {
+    pub(crate) mu_v: f64,
+    pub(crate) sin_v: f64,
+    pub(crate) tan_v: f64,
+    pub(crate) c: f64,
+    pub(crate) big_s: f64,
+}
+
+impl PhiWarp {
+    /// For view cosine `n_dot_v` ∈ (0, 1] (values above 1 are taken as 1).
+    pub(crate) fn new(n_dot_v: f64) -> PhiWarp {
+        let mu_v = n_dot_v.min(1.0);
+        let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
+        let c = if sin_v > 0.0 {
+            (mu_v / sin_v).min(1.0)
+        } else {
+            1.0
+        };
+        PhiWarp {
+            mu_v,
+            sin_v,
+            tan_v: sin_v / mu_v,
+            c,
+            big_s: (FRAC_PI_2 / c).asinh(),
+        }
+    }
+}
+
 /// Per-thread scratch: integrand values on the finest grid (channel-interleaved) and, per
-/// φ node, its setup and the finest u level computed so far.
+/// φ node, its setup and the finest u level computed so far (also the V-groove path's).
 #[derive(Default)]
-struct Scratch {
-    vals: Vec<f64>,
+pub(crate) struct Scratch {
+    pub(crate) vals: Vec<f64>,
     /// per φ index: u level computed (usize::MAX = none)
-    level: Vec<usize>,
+    pub(crate) level: Vec<usize>,
     /// per φ index: inner half-length × outer Jacobian dφ/ds (the product every inner sum
     /// is multiplied by)
-    scale: Vec<f64>,
+    pub(crate) scale: Vec<f64>,
+}
+
+impl Scratch {
+    /// Sized for the finest grid with `n` channels, every φ node marked as not computed.
+    pub(crate) fn reset(&mut self, n: usize) {
+        self.vals.resize(NMAX * NMAX * n, 0.0);
+        self.level.clear();
+        self.level.resize(NMAX, usize::MAX);
+        self.scale.resize(NMAX, 0.0);
+    }
 }
 
 thread_local! {
@@ -188,21 +230,14 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
     g: &F,
 ) -> Result<Estimate<N>, u64> {
     let r = rules();
-    sc.vals.resize(NMAX * NMAX * N, 0.0);
-    sc.level.clear();
-    sc.level.resize(NMAX, usize::MAX);
-    sc.scale.resize(NMAX, 0.0);
-
-    let mu_v = n_dot_v.min(1.0);
-    let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
-    let tan_v = sin_v / mu_v;
-    // φ = π/2 + c sinh s, s ∈ [−S, S]
-    let c = if sin_v > 0.0 {
-        (mu_v / sin_v).min(1.0)
-    } else {
-        1.0
-    };
-    let big_s = (FRAC_PI_2 / c).asinh();
+    sc.reset(N);
+    let PhiWarp {
+        mu_v,
+        sin_v,
+        tan_v,
+        c,
+        big_s,
+    } = PhiWarp::new(n_dot_v);
     // Fills the values of φ index i up to u level ku.
     let fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
         let have = sc.level[i];

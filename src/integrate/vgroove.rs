@@ -47,7 +47,7 @@
 
 use super::adaptive::Estimate;
 use super::hemisphere::{integrate_over_l, tan_theta_h_max, LobeWarp, Node};
-use super::tensor::{inner_sums, refine, rules, MAX_LEVEL};
+use super::tensor::{inner_sums, refine, rules, PhiWarp, Scratch, MAX_LEVEL};
 use std::cell::RefCell;
 use std::f64::consts::FRAC_PI_2;
 
@@ -131,14 +131,6 @@ impl TailCut {
     }
 }
 
-/// Per-thread scratch of one piece's tensor rule (as in the smooth fast path).
-#[derive(Default)]
-struct Scratch {
-    vals: Vec<f64>,
-    level: Vec<usize>,
-    scale: Vec<f64>,
-}
-
 thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
@@ -156,15 +148,13 @@ pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
     tol_abs: f64,
     g: F,
 ) -> Result<Estimate<N>, u64> {
-    let mu_v = n_dot_v.min(1.0);
-    let sin_v = (1.0 - mu_v * mu_v).max(0.0).sqrt();
-    let tan_v = sin_v / mu_v;
-    let c = if sin_v > 0.0 {
-        (mu_v / sin_v).min(1.0)
-    } else {
-        1.0
-    };
-    let big_s = (FRAC_PI_2 / c).asinh();
+    let PhiWarp {
+        mu_v,
+        sin_v,
+        tan_v,
+        c,
+        big_s,
+    } = PhiWarp::new(n_dot_v);
     // φ panels in s: split where tan ψ = 1 (cos φ = 1/tan θv), left of it ψ > π/4
     let mut panels: Vec<(f64, f64, &[Piece])> = Vec::with_capacity(2);
     const TWO: &[Piece] = &[Piece::Flat, Piece::Outer];
@@ -232,10 +222,7 @@ fn piece_rule<const N: usize, F: Fn(&Node) -> [f64; N]>(
     g: &F,
 ) -> Result<Estimate<N>, u64> {
     let r = rules();
-    sc.vals.resize(NMAX * NMAX * N, 0.0);
-    sc.level.clear();
-    sc.level.resize(NMAX, usize::MAX);
-    sc.scale.resize(NMAX, 0.0);
+    sc.reset(N);
     let (s_mid, s_half) = (0.5 * (s0 + s1), 0.5 * (s1 - s0));
     let fill = |sc: &mut Scratch, evals: &mut u64, i: usize, ku: usize| {
         let have = sc.level[i];
