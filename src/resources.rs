@@ -127,15 +127,11 @@ const EVALS_PER_NUMERIC_G1: f64 = 1e6;
 /// and near-delta lobes cost more, smooth wide lobes less; the estimate is a guide, the
 /// run-time check of the same limit ([`Deadline`]) is the guarantee.
 fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
-    use crate::model::{Masking, NdfKind};
+    use crate::model::Masking;
     use crate::table::TableKind as K;
     let spec = &t.spec;
     let vgroove = spec.model.masking == Masking::VGroove;
-    let polar = spec.model.ndf == Some(NdfKind::Ggx)
-        && matches!(
-            spec.model.masking,
-            Masking::SmithHeightCorrelated | Masking::SmithSeparable
-        );
+    let polar = crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking);
     let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
     let albedo = if vgroove {
         2_100.0

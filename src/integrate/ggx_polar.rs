@@ -114,6 +114,22 @@ struct Line {
 }
 
 impl Texel {
+    fn new(mu: f64, alpha: f64, smith: Smith) -> Texel {
+        let a2 = alpha * alpha;
+        let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
+        let theta_v = sin_v.atan2(mu);
+        Texel {
+            mu_v: mu,
+            sin_v,
+            theta_v,
+            a2,
+            a_v: (mu * mu * (1.0 - a2) + a2).sqrt(),
+            smith,
+            half_v: (0.5 * theta_v).sin_cos(),
+            sqrt_1ma2: (1.0 - a2).sqrt(),
+        }
+    }
+
     /// `G2/(2μv)` at μl (both Smith forms; finite as μv → 0).
     fn g_fac(&self, mu_l: f64) -> f64 {
         let a_l = (mu_l * mu_l * (1.0 - self.a2) + self.a2).sqrt();
@@ -284,18 +300,8 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
     if !(mu > 0.0 && mu <= 1.0 && alpha > 0.0 && alpha <= 1.0 && tol > 0.0) {
         return Err(0);
     }
-    let a2 = alpha * alpha;
-    let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
-    let t = Texel {
-        mu_v: mu,
-        sin_v,
-        theta_v: sin_v.atan2(mu),
-        a2,
-        a_v: (mu * mu * (1.0 - a2) + a2).sqrt(),
-        smith,
-        half_v: (0.5 * sin_v.atan2(mu)).sin_cos(),
-        sqrt_1ma2: (1.0 - a2).sqrt(),
-    };
+    let t = Texel::new(mu, alpha, smith);
+    let a2 = t.a2;
     let theta_v = t.theta_v;
     // Scales of the integrand's features in θl: the lobe, S − Q ≈ μv²((θl − θv)² + 4α²),
     // and the masking layer at the horizon, where G2/(2μv) = μl/(μl a_v + μv a_l) turns
@@ -404,16 +410,7 @@ mod tests {
         ] {
             let sin_v = (1.0f64 - mu_v * mu_v).sqrt();
             let a2: f64 = alpha * alpha;
-            let t = Texel {
-                mu_v,
-                sin_v,
-                theta_v: sin_v.atan2(mu_v),
-                a2,
-                a_v: (mu_v * mu_v * (1.0 - a2) + a2).sqrt(),
-                smith: Smith::HeightCorrelated,
-                half_v: (0.5 * sin_v.atan2(mu_v)).sin_cos(),
-                sqrt_1ma2: (1.0 - a2).sqrt(),
-            };
+            let t = Texel::new(mu_v, alpha, Smith::HeightCorrelated);
             for &theta_l in &[0.1, 0.5, t.theta_v, 1.2, 1.5] {
                 let (sl, ml): (f64, f64) = theta_l.sin_cos();
                 let n = 200_000;

@@ -63,7 +63,9 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
         .as_ref()
         .filter(|_| brdf.diffuse_weight == 0.0 && mu > 0.0)
     {
-        if let (crate::model::Fresnel::Schlick { f0 }, Some(smith)) = (s.fresnel, polar_smith(s)) {
+        if let (crate::model::Fresnel::Schlick { f0 }, Some(smith)) =
+            (s.fresnel, super::dfg::kernel_smith(s))
+        {
             if f0.abs() <= 1.0 {
                 match crate::integrate::ggx_polar::ggx_split_sum(
                     mu,
@@ -88,14 +90,9 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
     if let Some(s) = brdf.specular.as_ref().filter(|s| {
         brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
     }) {
-        use crate::integrate::dfg_kernel::{charlie_sheen, ggx_split_sum, Column, Smith};
+        use crate::integrate::dfg_kernel::{charlie_sheen, ggx_split_sum, Column};
         use crate::model::NdfKind;
-        let smith = match (s.ndf.kind(), s.masking) {
-            (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
-            (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
-            _ => None,
-        };
-        if let Some(smith) = smith {
+        if let Some(smith) = super::dfg::kernel_smith(s) {
             match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
                 Ok(e) => return (e.value, e.error, e.evals + spent),
                 Err(n) => spent += n,
@@ -161,17 +158,6 @@ pub fn uses_kernel(model: &super::ModelSpec) -> bool {
                 Masking::SmithHeightCorrelated | Masking::SmithSeparable
             ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
         )
-}
-
-/// The Smith form of the polar GGX kernel for this lobe, if it applies.
-fn polar_smith(s: &crate::model::Specular) -> Option<crate::integrate::dfg_kernel::Smith> {
-    use crate::integrate::dfg_kernel::Smith;
-    use crate::model::NdfKind;
-    match (s.ndf.kind(), s.masking) {
-        (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
-        (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
-        _ => None,
-    }
 }
 
 /// [`directional_albedo`] by the adaptive integrator alone.

@@ -74,9 +74,9 @@ pub fn sheen_albedo_adaptive(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
     (e.value[0], e.error[0], e.evals)
 }
 
-/// The Smith form the specialised kernel handles for this lobe, if it does (GGX with
-/// Smith masking; the split sums ignore the lobe's own Fresnel).
-fn kernel_smith(s: &Specular) -> Option<Smith> {
+/// The Smith form the specialised GGX kernels (2D and polar) handle for this lobe, if they
+/// do (GGX with Smith masking; the split sums ignore the lobe's own Fresnel).
+pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
     match (s.ndf.kind(), s.masking) {
         (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
         (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
