@@ -283,6 +283,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     } else {
         method
     };
+    let method = if spec.kind == TableKind::Dfg && crate::table::dfg::rows_interpolated(spec) {
+        format!(
+            "Split-sum channels row by row: {} Each node: {method}",
+            crate::integrate::interp1d::METHOD
+        )
+    } else {
+        method
+    };
     let method = if spec.kind == TableKind::Dfg && spec.cloth {
         format!(
             "{method}. Cloth channel B, alpha < 1/16: first {}",

@@ -147,8 +147,20 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Ndf | K::G1 | K::G2 | K::Vgroove => (0.0, 0.0),
         K::Albedo => (albedo, 0.0),
         K::AlbedoAvg => (avg, 0.0),
-        // cloth: 1,585 per texel measured with its light-direction path (cloth4)
-        K::Dfg => (dfg + if spec.cloth { 1_600.0 } else { 0.0 }, 0.0),
+        // cloth: 1,585 per texel measured with its light-direction path (cloth4). GGX rows
+        // interpolated in √μ (src/integrate/interp1d.rs) cost per row about 60,000 + 190 per
+        // texel (measured: 80,400 per 128-texel row, 155,000 per 512-texel row of
+        // karis-envbrdf, 2026-11-30), never more than texel by texel
+        K::Dfg => {
+            let cloth = if spec.cloth { 1_600.0 } else { 0.0 };
+            if crate::table::dfg::rows_interpolated(spec) {
+                let nx = spec.axes[0].size as f64;
+                let row = (60_000.0 + 190.0 * nx).min(dfg * nx);
+                (cloth, row)
+            } else {
+                (dfg + cloth, 0.0)
+            }
+        }
         K::KullaConty => (albedo, avg),
         K::AlbedoFresnel => (1_200.0, 0.0),
         // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph

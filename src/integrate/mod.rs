@@ -9,6 +9,7 @@ pub mod dfg_kernel;
 pub mod gauss;
 pub mod ggx_polar;
 pub mod hemisphere;
+pub mod interp1d;
 pub mod monte_carlo;
 pub mod sheen_l;
 pub mod tensor;
