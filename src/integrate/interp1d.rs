@@ -29,6 +29,8 @@
 //! a pure function of its coordinates; lines are independent, so a caller may run them in
 //! parallel without changing a bit.
 
+use super::chebyshev::{clenshaw, lobatto_coefficients};
+
 /// What this module does, for the sidecar's `quadrature.method`.
 pub const METHOD: &str = "interpolated along each row in x = sqrt(mu) (src/integrate/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested), intervals halved where degree 64 does not pass; accepted where |c_(n-1)| + |c_n| + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4; intervals with no more texels than nodes computed texel by texel.";
 
@@ -100,34 +102,6 @@ fn node(a: f64, b: f64, j: usize, n: usize) -> f64 {
     }
 }
 
-/// Chebyshev coefficients of the interpolant through `v[j]` at `t_j = cos(πj/n)`.
-fn dct(v: &[f64]) -> Vec<f64> {
-    let n = v.len() - 1;
-    (0..=n)
-        .map(|k| {
-            let mut s = 0.0;
-            for (j, vj) in v.iter().enumerate() {
-                let w = if j == 0 || j == n { 0.5 } else { 1.0 };
-                let m = (j * k) % (2 * n);
-                s += w * vj * (std::f64::consts::PI * (m as f64 / n as f64)).cos();
-            }
-            let scale = if k == 0 || k == n { 1.0 } else { 2.0 };
-            s * scale / n as f64
-        })
-        .collect()
-}
-
-/// Σ c_k T_k(t) by Clenshaw's recurrence.
-fn clenshaw(c: &[f64], t: f64) -> f64 {
-    let (mut b1, mut b2) = (0.0, 0.0);
-    for k in (1..c.len()).rev() {
-        let b0 = c[k] + 2.0 * t * b1 - b2;
-        b2 = b1;
-        b1 = b0;
-    }
-    c[0] + t * b1 - b2
-}
-
 /// A function at the points `xs` (strictly increasing) with `nc` channels, to tolerance
 /// `tol` (see the module docs). `node(x, t)` returns it at x within t (called with
 /// `t = tol/4` at interpolation nodes and at the sample test's points inside `[xs[0], xs[last]]`); `texel(i, t)` returns it
@@ -181,7 +155,7 @@ where
                 let v: Vec<f64> = vals.iter().map(|s| s.value[c]).collect();
                 let delta = vals.iter().map(|s| s.error[c]).fold(0.0, f64::max);
                 let scale = v.iter().map(|x| x.abs()).fold(0.0, f64::max);
-                let co = dct(&v);
+                let co = lobatto_coefficients(&v);
                 let tail = co[n].abs() + co[n - 1].abs();
                 let floor = lebesgue(n) * delta + ROUNDING * scale;
                 let err = tail + floor;
