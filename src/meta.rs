@@ -285,7 +285,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     };
     let method = if spec.kind == TableKind::Dfg && crate::table::dfg::rows_interpolated(spec) {
         format!(
-            "Split-sum channels row by row: {} Each node: {method}",
+            "Split-sum channels row by row: {} Rows are first cut at mu = 0.01 (texels closer to grazing: one row interval, usually computed texel by texel). Each node: {method}",
             crate::integrate::interp1d::METHOD
         )
     } else {

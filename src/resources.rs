@@ -148,14 +148,14 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Albedo => (albedo, 0.0),
         K::AlbedoAvg => (avg, 0.0),
         // cloth: 1,585 per texel measured with its light-direction path (cloth4). GGX rows
-        // interpolated in √μ (src/integrate/interp1d.rs) cost per row about 60,000 + 190 per
-        // texel (measured: 80,400 per 128-texel row, 155,000 per 512-texel row of
+        // interpolated in √μ (src/integrate/interp1d.rs) cost per row about 40,000 + 85 per
+        // texel (measured: 50,700 per 128-texel row, 82,800 per 512-texel row of
         // karis-envbrdf, 2026-11-30), never more than texel by texel
         K::Dfg => {
             let cloth = if spec.cloth { 1_600.0 } else { 0.0 };
             if crate::table::dfg::rows_interpolated(spec) {
                 let nx = spec.axes[0].size as f64;
-                let row = (60_000.0 + 190.0 * nx).min(dfg * nx);
+                let row = (40_000.0 + 85.0 * nx).min(dfg * nx);
                 (cloth, row)
             } else {
                 (dfg + cloth, 0.0)

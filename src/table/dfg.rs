@@ -229,6 +229,14 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
     })
 }
 
+/// Where [`by_rows`] cuts every row first, in x = √μ: μ = 0.01 (θv ≈ 89.4°). Closer to
+/// grazing the split sum of a narrow lobe changes on the scale of μ itself (the masking layer
+/// at the horizon), which costs many nodes, and those nodes are the most expensive
+/// quadratures of the row: the few texels there (one of a 128-texel row, five of 512) are
+/// computed directly instead. Measured on karis-envbrdf: 10.3 → 6.5 M evaluations at 128²,
+/// 79 → 42 M at 512² (cuts at μ = 0.0025 … 0.0625 tried; 0.01 is best at both sizes).
+const GRAZING_BREAK: f64 = 0.1;
+
 /// Whether [`by_rows`] bakes this table: 2D dfg tables whose split-sum channels go through
 /// the GGX kernels (whose values are analytic in √μ along a row), with view cosines
 /// increasing and positive (the rows are interpolated in √μ). Rows too short to pay are
@@ -283,6 +291,7 @@ pub(crate) fn by_rows(
         .map(|j| {
             interp1d::line(
                 &xs,
+                &[GRAZING_BREAK],
                 2,
                 ctx.tol,
                 |x, t| {
