@@ -119,6 +119,9 @@ fn cut_point(z: f64, theta_a: f64, theta_v: f64, lambda: f64) -> (f64, f64) {
 /// cos φ₁ = c₀ = −μ cos 2θh/(s_v sin 2θh), clamped to [−1, 1].
 #[inline]
 fn cos_phi1(mu: f64, sv: f64, theta_h: f64) -> f64 {
+    if mu <= 0.0 {
+        return 0.0; // grazing view: n·l = 2(v·h) cos θh > 0 iff cos φ > 0
+    }
     let (s2, c2) = (2.0 * theta_h).sin_cos();
     (-mu * c2 / (sv * s2)).clamp(-1.0, 1.0)
 }
@@ -226,7 +229,12 @@ pub fn ward_gmd_albedo(mu: f64, alpha: f64, tol: f64) -> Result<Estimate<1>, Ref
         let p1 = c0.acos();
         let (a, b) = (sv * sh, mu * ch);
         // 2 × ∫₀^φ₁ (n·l)/(v·h) dφ
-        let inner = 2.0 * (2.0 * ch * p1 - mu * inv_vh_arc(a, b, c0));
+        let j = if mu > 0.0 {
+            mu * inv_vh_arc(a, b, c0)
+        } else {
+            0.0
+        };
+        let inner = 2.0 * (2.0 * ch * p1 - j);
         let t = sh / ch;
         [norm * (-(t * t) / (alpha * alpha)).exp() * inner * sh / (ch * ch * ch * ch) * jac]
     };

@@ -546,18 +546,14 @@ fn azimuth_average(m: &dyn Reflectance, theta: f64, e0: Albedo, ey: Albedo, tol:
 /// The view-side albedo of an isotropic model at parameter `p` by the 1D fast path of
 /// [`classic_lobes`] where one exists for the model (blinn-phong, modified-phong, phong,
 /// ward-gmd): `None` for other models, `Some(Err(evaluations spent))` where its estimate
-/// does not reach `tol`. The lobe weight scales the lobe (its tolerance is divided by it);
+/// does not reach `tol`, `None` also at cos θv ≤ 0 (left to the laws integrator's own
+/// convention there; tables reject that cosine). The lobe weight scales the lobe (its tolerance is divided by it);
 /// a Lambert term adds its albedo, exactly its weight.
 pub fn fast_albedo(c: &ClassicModel, mu: f64, p: f64, tol: f64) -> Option<Result<Albedo, u64>> {
-    use crate::integrate::classic_lobes as cl;
-    type Lobe = fn(f64, f64, f64) -> Result<crate::integrate::Estimate<1>, u64>;
-    let (lambert, weight, lobe): (f64, f64, Lobe) = match *c {
-        ClassicModel::BlinnPhong { ks } => (0.0, ks, cl::blinn_phong_albedo),
-        ClassicModel::ModifiedPhong { kd, ks } => (kd, ks, cl::modified_phong_albedo),
-        ClassicModel::Phong { ks } => (0.0, ks, cl::phong_albedo),
-        ClassicModel::WardGmd { rho_d, rho_s } => (rho_d, rho_s, cl::ward_gmd_albedo),
-        _ => return None,
-    };
+    let (lambert, weight, lobe) = fast_lobe(c)?;
+    if mu.is_nan() || mu <= 0.0 {
+        return None;
+    }
     if weight == 0.0 {
         return Some(Ok(Albedo {
             value: lambert,
@@ -572,11 +568,25 @@ pub fn fast_albedo(c: &ClassicModel, mu: f64, p: f64, tol: f64) -> Option<Result
     }))
 }
 
+type Lobe = fn(f64, f64, f64) -> Result<crate::integrate::Estimate<1>, u64>;
+
+/// The Lambert weight, lobe weight and 1D fast path of a model that has one.
+fn fast_lobe(c: &ClassicModel) -> Option<(f64, f64, Lobe)> {
+    use crate::integrate::classic_lobes as cl;
+    Some(match *c {
+        ClassicModel::BlinnPhong { ks } => (0.0, ks, cl::blinn_phong_albedo),
+        ClassicModel::ModifiedPhong { kd, ks } => (kd, ks, cl::modified_phong_albedo),
+        ClassicModel::Phong { ks } => (0.0, ks, cl::phong_albedo),
+        ClassicModel::WardGmd { rho_d, rho_s } => (rho_d, rho_s, cl::ward_gmd_albedo),
+        _ => return None,
+    })
+}
+
 /// The quadrature method of a classic table, as the sidecar states it: the 1D fast path
 /// first where the model has one ([`fast_albedo`]), the energy-law integrator otherwise.
 pub fn method(spec: &TableSpec) -> String {
     let c = spec.model.classic.as_ref().expect("a classic table");
-    if fast_albedo(c, 0.5, 1.0, 1.0).is_none() {
+    if fast_lobe(c).is_none() {
         return METHOD.into();
     }
     let which = if spec.kind == TableKind::ClassicAlbedoAniso {
