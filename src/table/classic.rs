@@ -25,6 +25,10 @@
 //!   and `E_y` at φv = 90° (view in the y–n plane). These models depend on the tangent
 //!   components only through squares or products ωi,x ωo,x and ωi,y ωo,y, so
 //!   E(φ) = E(−φ) = E(π − φ): the average is taken over [0, π/2].
+//! * **Fast path**: `phong`, `modified-phong`, `blinn-phong` and `ward-gmd` (isotropic)
+//!   are first integrated by [`crate::integrate::classic_lobes`] (azimuth in closed form,
+//!   one 1D nested Clenshaw–Curtis integral per piece; [`fast_albedo`]); a texel whose
+//!   estimate does not reach the tolerance, and every other model, as follows.
 //! * **Quadrature**: the energy-law integrator of [`crate::laws`] (nested adaptive
 //!   Gauss–Kronrod G7/K15 over the half vector, exact horizon, asinh lobe warp), applied to
 //!   the model with its arguments swapped so that the view is the fixed direction; the
