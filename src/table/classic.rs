@@ -593,13 +593,19 @@ pub fn method(spec: &TableSpec) -> String {
     if fast_lobe(c).is_none() {
         return METHOD.into();
     }
-    let which = if spec.kind == TableKind::ClassicAlbedoAniso {
-        "the isotropic texels (anisotropy a = 0) first by the 1D fast path: "
+    let (which, rest) = if spec.kind == TableKind::ClassicAlbedoAniso {
+        (
+            "the isotropic texels (anisotropy a = 0) first by the 1D fast path: ",
+            "every texel with a > 0, and an isotropic texel whose estimate does not reach the tolerance",
+        )
     } else {
-        "first by the 1D fast path: "
+        (
+            "first by the 1D fast path: ",
+            "a texel whose estimate does not reach the tolerance",
+        )
     };
     format!(
-        "{which}{}; a texel whose estimate does not reach the tolerance (and every other texel): {METHOD}",
+        "{which}{}; {rest}: {METHOD}",
         crate::integrate::classic_lobes::METHOD
     )
 }
