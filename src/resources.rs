@@ -158,8 +158,8 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
         // Models with the 1D fast path (src/integrate/classic_lobes.rs) measured on the
-        // `classic-albedo` preset (2026-11-30): blinn-phong 45, modified-phong 25 (phong the
-        // same), ward-gmd 85 per texel; each evaluation costs a few transcendental
+        // `classic-albedo` preset (2026-11-30): blinn-phong 46, modified-phong 29 (phong the
+        // same), ward-gmd 86 per texel; each evaluation costs a few transcendental
         // functions (~0.2-0.6 us), more than the 100 ns assumed.
         K::ClassicAlbedo => (classic_evals_per_texel(spec.model.classic.as_ref()), 0.0),
         K::ClassicAlbedoAniso => (300_000.0, 0.0),
