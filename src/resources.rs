@@ -168,9 +168,24 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // src/table/dielectric.rs)
         K::DielectricBtdf => (5_100.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
-        // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths)
-        K::ClassicAlbedo => (15_000.0, 0.0),
+        // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
+        // Models with the 1D fast path (src/integrate/classic_lobes.rs) measured on the
+        // `classic-albedo` preset (2026-11-30): blinn-phong 46, modified-phong 29 (phong the
+        // same), ward-gmd 86 per texel; each evaluation costs a few transcendental
+        // functions (~0.2-0.6 us), more than the 100 ns assumed.
+        K::ClassicAlbedo => (classic_evals_per_texel(spec.model.classic.as_ref()), 0.0),
         K::ClassicAlbedoAniso => (300_000.0, 0.0),
+    }
+}
+
+/// Typical evaluations per texel of a `classic-albedo` table (see [`evals_per_texel`]).
+fn classic_evals_per_texel(c: Option<&crate::table::classic::ClassicModel>) -> f64 {
+    use crate::table::classic::ClassicModel as C;
+    match c {
+        Some(C::BlinnPhong { .. }) => 50.0,
+        Some(C::ModifiedPhong { .. } | C::Phong { .. }) => 30.0,
+        Some(C::WardGmd { .. }) => 90.0,
+        _ => 15_000.0,
     }
 }
 

@@ -5,6 +5,7 @@
 pub mod adaptive;
 pub mod cc1d;
 pub mod chebyshev;
+pub mod classic_lobes;
 pub mod dfg_kernel;
 pub mod gauss;
 pub mod ggx_polar;
