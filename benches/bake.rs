@@ -1,7 +1,8 @@
 //! `cargo bench`: criterion benchmarks of brdfbake's public API.
 //!
 //! * `table/<kind>`: `brdfbake::bake` of one small table per kind (ndf, g1, g2, vgroove,
-//!   albedo, albedo-avg, dfg Karis, dfg Filament + cloth), described as a preset so the
+//!   albedo, albedo-avg, dfg Karis (8-texel rows, texel by texel; 256-texel rows,
+//!   interpolated in √μ), dfg Filament + cloth), described as a preset so the
 //!   benchmark goes through the same validation as the CLI;
 //! * `method/<integral>`: one integral at one point by each public entry point —
 //!   brdfbake's adaptive Gauss–Kronrod (`table::albedo`, `table::dfg`, the hemisphere
@@ -42,6 +43,8 @@ const SMALL: &str = r#"{
       "axes": { "roughness": { "size": 4, "quantity": "perceptual" } } },
     { "name": "dfg-karis", "kind": "dfg", "layout": "karis", "model": { "ndf": "ggx", "masking": "smith-height-correlated" },
       "axes": { "cos_theta_v": { "size": 8 }, "roughness": { "size": 8, "quantity": "perceptual" } } },
+    { "name": "dfg-karis-rows", "kind": "dfg", "layout": "karis", "model": { "ndf": "ggx", "masking": "smith-height-correlated" },
+      "axes": { "cos_theta_v": { "size": 256 }, "roughness": { "size": 4, "quantity": "perceptual" } } },
     { "name": "dfg-filament-cloth", "kind": "dfg", "layout": "filament", "cloth": true,
       "model": { "ndf": "ggx", "masking": "smith-height-correlated", "fresnel": { "type": "none" } },
       "axes": { "cos_theta_v": { "size": 8, "range": [0, 1], "convention": "centers" },
