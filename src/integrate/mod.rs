@@ -11,6 +11,7 @@ pub mod ggx_polar;
 pub mod hemisphere;
 pub mod monte_carlo;
 pub mod sheen_l;
+pub mod sheen_wide;
 pub mod tensor;
 pub mod vgroove;
 
