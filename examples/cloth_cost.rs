@@ -1,10 +1,12 @@
 //! Cost of the cloth channel of a `filament-dfg`-style table (μ = (i + ½)/N, α = ((j + ½)/N)²),
 //! per path, on one thread: evaluations per texel and CPU time, for the narrow rows
-//! (α < 1/16) and the wide rows separately.
+//! (α < 1/16) and the wide rows separately. Narrow rows: `sheen_l`, then the half-vector
+//! kernel where it gives up (as the bake does). Wide rows: `sheen_wide` first (the
+//! experiment; the kernel where it gives up), or with `old` the half-vector kernel alone (as
+//! the bake does).
 //!
 //! ```text
-//! cargo run --release --example cloth_cost -- [N] [TOL] [old]   (defaults 128, 1e-7; old: wide
-//!                                                            lobes by the half-vector kernel)
+//! cargo run --release --example cloth_cost -- [N] [TOL] [old]   (defaults 128, 1e-7)
 //! ```
 
 use brdfbake::integrate::dfg_kernel::{charlie_sheen_shared, Column, SheenCache};

@@ -49,9 +49,21 @@
 //! the lower clamp of a is active (the breakpoint node itself), the part ψ < a that the map
 //! does not resolve is bounded by `a·((c_N² + a²/4)/c_D²)^k` and added to the bound.
 //! `Err(evaluations)` if a piece does not converge within 129 nodes, a panel within 129
-//! nodes, or the texel within [`EVAL_CAP`] evaluations; the 2D half-vector kernel then
-//! takes over.
+//! nodes, or the texel within [`EVAL_CAP`] evaluations.
 //!
+//! **Cost: not used by the bake.** Over the wide rows of a 128² `filament-dfg` table
+//! (`cargo run --release --example cloth_cost`, one thread, tol 1e-7) this path converges at
+//! every texel with 1,419 evaluations per texel against the half-vector kernel's 1,761
+//! ([`charlie_sheen_shared`](super::dfg_kernel::charlie_sheen_shared)), but takes ~83 µs per
+//! texel against ~28 µs: the kernel shares everything but `exp(k ln sin²θh)` across the
+//! roughness rows of a column (~16 ns per evaluation), while here every evaluation computes
+//! its node, `N/D`, a logarithm and an exponential (~58 ns). The near piece (~17–33
+//! evaluations per outer node) is most of the count. Sharing the α-independent part the same
+//! way would need a node set independent of k (the clamp of a above depends on k) and would
+//! still save only the ~20% fewer evaluations, so [`cloth_texel`] keeps the kernel for wide
+//! lobes.
+//!
+//! [`cloth_texel`]: crate::table::dfg
 //! Determinism: fixed nodes and summation order; nothing is shared between calls, so the
 //! value is a pure function of (μv, α, tol).
 
