@@ -11,7 +11,7 @@
 
 use brdfbake::integrate::dfg_kernel::{charlie_sheen_shared, Column, SheenCache};
 use brdfbake::integrate::sheen_l::{charlie_sheen_l, MAX_ALPHA};
-use brdfbake::integrate::sheen_wide::charlie_sheen_wide;
+use brdfbake::integrate::sheen_wide::{charlie_sheen_wide_shared, WideCache};
 use std::cell::RefCell;
 use std::time::Instant;
 
@@ -27,6 +27,7 @@ fn main() {
         let mu = (i as f64 + 0.5) / n as f64;
         let col = Column::new(mu);
         let cache = RefCell::new(SheenCache::default());
+        let mut wide_cache = WideCache::default();
         for j in 0..n {
             let r = (j as f64 + 0.5) / n as f64;
             let alpha = r * r;
@@ -36,7 +37,7 @@ fn main() {
             let mut fell = 0;
             if !wide || !old {
                 let r = if wide {
-                    charlie_sheen_wide(mu, alpha, tol)
+                    charlie_sheen_wide_shared(mu, alpha, tol, &mut wide_cache)
                 } else {
                     charlie_sheen_l(mu, alpha, tol)
                 };

@@ -83,23 +83,37 @@ const MID: usize = NMAX / 2;
 pub const MIN_ALPHA: f64 = super::sheen_l::MAX_ALPHA;
 /// The widest Charlie lobe (α = 1, k = ½).
 pub const MAX_ALPHA: f64 = 1.0;
-/// Evaluations after which a texel gives up (the half-vector kernel is cheaper there).
+/// Evaluations after which a texel gives up (the half-vector kernel takes over).
 pub const EVAL_CAP: u64 = 6000;
-/// Mass below the near map's resolution that the clamp of its scale may leave (relative to
-/// c_D, see [`Node::eval`]).
-const UNRESOLVED: f64 = 1e-12;
+/// Lower clamp of the near map's scale a, relative to c_D: where it is active the part
+/// ψ < a holds at most `2a·(a/(2c_D))^{2k} ≤ A_FLOOR²·c_D` (k ≥ ½), ≤ 1e-13·c_D.
+const A_FLOOR: f64 = 3e-7;
+/// Length in s of the near piece's sub-panels (the symmetric first one: [−S_PANEL, S_PANEL]).
+const S_PANEL: f64 = 8.0;
 /// Share of a panel's tolerance that one outer node's inner error (times its outer factor)
 /// may use (outer weights sum to 2, so the inner errors use at most a tenth).
-const INNER_SHARE: f64 = 0.05;
+const INNER_SHARE: f64 = 0.15;
 
 /// What this path does, for documentation and the benchmarks.
-pub const METHOD: &str = "wide cloth lobes (1/16 <= alpha <= 1) in light-direction coordinates (src/integrate/sheen_wide.rs): outer nested Clenshaw-Curtis in pi/2 - theta_l = (pi/2 - theta_v) sinh z on two panels split at theta_l = theta_v (where h = n makes (sin theta_h)^(1/alpha) non-analytic); inner azimuthal integral split at psi = pi - phi = pi/2, nested Clenshaw-Curtis in psi = a sinh(s) (a = 2|sin theta_l - sin theta_v|/(2 sqrt(sin theta_l sin theta_v)), the width of the h = n feature) on [0, pi/2] and in psi on [pi/2, pi]; estimate from the nested levels plus the inner bounds";
+pub const METHOD: &str = "wide cloth lobes (1/16 <= alpha <= 1) in light-direction coordinates (src/integrate/sheen_wide.rs): outer nested Clenshaw-Curtis in pi/2 - theta_l = (pi/2 - theta_v) sinh z on two panels split at theta_l = theta_v (where h = n makes (sin theta_h)^(1/alpha) non-analytic); inner azimuthal integral split at psi = pi - phi = pi/2, nested Clenshaw-Curtis in psi on [pi/2, pi] and in psi = a sinh(s) on [0, pi/2] (a = 2|sin theta_l - sin theta_v|/(2 sqrt(sin theta_l sin theta_v)), the width of the h = n feature; s in panels of length 3); the roughness-independent node data shared by a table column; estimate from the nested levels plus the inner bounds";
 
 /// The cloth albedo at view cosine `mu_v` ∈ (0, 1] and Charlie α ∈ [1/16, 1], to absolute
 /// tolerance `tol` (estimated, see the module docs); `Err(evaluations spent)` where the
 /// rules do not reach it (`Err(0)`: arguments outside that range). A pure function of its
 /// arguments.
 pub fn charlie_sheen_wide(mu_v: f64, alpha: f64, tol: f64) -> Result<Estimate<1>, u64> {
+    charlie_sheen_wide_shared(mu_v, alpha, tol, &mut WideCache::default())
+}
+
+/// [`charlie_sheen_wide`] with the roughness-independent node data of the view `mu_v`
+/// kept in `cache` for the next call (a table column): the same result, bit for bit (every
+/// entry is a pure function of μv and the node; a cache holding another μv is cleared).
+pub fn charlie_sheen_wide_shared(
+    mu_v: f64,
+    alpha: f64,
+    tol: f64,
+    cache: &mut WideCache,
+) -> Result<Estimate<1>, u64> {
     if !(mu_v > 0.0
         && mu_v <= 1.0
         && (MIN_ALPHA..=MAX_ALPHA).contains(&alpha)
@@ -108,22 +122,23 @@ pub fn charlie_sheen_wide(mu_v: f64, alpha: f64, tol: f64) -> Result<Estimate<1>
     {
         return Err(0);
     }
-    let k = 0.5 / alpha;
-    let node = Node {
+    cache.select(mu_v);
+    let view = View {
         mu_v,
         sv: ((1.0 - mu_v) * (1.0 + mu_v)).max(0.0).sqrt(),
-        k,
-        norm: (2.0 + 1.0 / alpha) / (2.0 * PI),
+        eps_v: mu_v.asin(),
     };
-    let eps_v = mu_v.asin();
+    let k = 0.5 / alpha;
+    let norm = (2.0 + 1.0 / alpha) / (2.0 * PI);
     let z_b = 1f64.asinh();
-    let z_t = (FRAC_PI_2 / eps_v).asinh();
+    let z_t = (FRAC_PI_2 / view.eps_v).asinh();
     let panels = [(0.0, z_b), (z_b, z_t)];
     let n_panels = if z_t > z_b { 2 } else { 1 };
     let tol_p = tol / n_panels as f64;
     let (mut value, mut error, mut evals) = (0.0, 0.0, 0u64);
-    for &(z0, z1) in &panels[..n_panels] {
-        let (v, e) = panel(&node, eps_v, z0, z1, tol_p, &mut evals)?;
+    for (p, &(z0, z1)) in panels[..n_panels].iter().enumerate() {
+        let nodes = &mut cache.nodes[p * NMAX..(p + 1) * NMAX];
+        let (v, e) = panel(&view, nodes, z0, z1, k, norm, tol_p, &mut evals)?;
         value += v;
         error += e;
     }
@@ -137,12 +152,44 @@ pub fn charlie_sheen_wide(mu_v: f64, alpha: f64, tol: f64) -> Result<Estimate<1>
     })
 }
 
-/// One outer panel `z ∈ [z0, z1]` (ε = ε_v sinh z): (value, error bound) to `tol`.
-fn panel(
-    node: &Node,
+/// The roughness-independent data of one view μv (a table column): per outer node, its
+/// outer factor and, per inner piece and node, `ln(N/D)` and dψ/dx, filled as texels ask
+/// for them.
+#[derive(Default)]
+pub struct WideCache {
+    /// bits of the μv the entries belong to (meaningful only when `nodes` is non-empty)
+    mu_bits: u64,
+    /// per panel (2) and outer node of the finest level
+    nodes: Vec<Option<Box<OuterNode>>>,
+}
+
+impl WideCache {
+    fn select(&mut self, mu_v: f64) {
+        if self.nodes.is_empty() || self.mu_bits != mu_v.to_bits() {
+            self.mu_bits = mu_v.to_bits();
+            self.nodes.clear();
+            self.nodes.resize_with(2 * NMAX, || None);
+        }
+    }
+}
+
+/// The view's constants.
+struct View {
+    mu_v: f64,
+    sv: f64,
+    /// π/2 − θv
     eps_v: f64,
+}
+
+/// One outer panel `z ∈ [z0, z1]` (ε = ε_v sinh z): (value, error bound) to `tol`.
+#[allow(clippy::too_many_arguments)]
+fn panel(
+    view: &View,
+    nodes: &mut [Option<Box<OuterNode>>],
     z0: f64,
     z1: f64,
+    k: f64,
+    norm: f64,
     tol: f64,
     evals: &mut u64,
 ) -> Result<(f64, f64), u64> {
@@ -159,15 +206,18 @@ fn panel(
         for (jj, &w) in r.w[lev].iter().enumerate() {
             let i = jj * stride;
             if !done[i] {
-                let z = z0 + half * (1.0 + r.x[i]);
-                let eps = eps_v * z.sinh();
-                let deps = eps_v * z.cosh() * half;
-                let (v, e) = if eps >= FRAC_PI_2 {
-                    node.eval(1.0, 0.0, budget, evals)?
-                } else {
-                    let (sn, cs) = eps.sin_cos();
-                    node.eval(sn, cs * deps, budget, evals)?
-                };
+                let node = nodes[i].get_or_insert_with(|| {
+                    let z = z0 + half * (1.0 + r.x[i]);
+                    let eps = view.eps_v * z.sinh();
+                    let deps = view.eps_v * z.cosh() * half;
+                    Box::new(if eps >= FRAC_PI_2 {
+                        OuterNode::new(view, 1.0, 0.0)
+                    } else {
+                        let (sn, cs) = eps.sin_cos();
+                        OuterNode::new(view, sn, cs * deps)
+                    })
+                });
+                let (v, e) = node.eval(k, norm, budget, evals)?;
                 val[i] = v;
                 err[i] = e;
                 done[i] = true;
@@ -195,19 +245,77 @@ fn panel(
     Err(*evals)
 }
 
-/// y = sin²(ψ/2) at the far piece's nodes ψ = π − (π/2)x (x = the finest level's nodes,
-/// i ≤ MID), the same for every texel.
-fn far_y() -> &'static [f64; MID + 1] {
-    static Y: OnceLock<[f64; MID + 1]> = OnceLock::new();
-    Y.get_or_init(|| {
+/// The inner rules' nodes in level order: position p of a piece's arrays holds the node
+/// `idx[p]` of the finest level, the nodes of level 2 first, then each level's new nodes,
+/// so that a level's new values are one contiguous slice (loops that vectorize); with each
+/// level's weights in the same order. Symmetric pieces keep the nodes x ≥ 0 (i ≤ MID) and
+/// fold the mirror half and the ½ of "half of [−1, 1]" into the weights.
+struct Order {
+    idx: [usize; NMAX],
+    /// positions filled after level k: count[k]
+    count: [usize; MAX_LEVEL + 1],
+    /// w[k][p]: level k's weight of position p
+    w: [[f64; NMAX]; MAX_LEVEL + 1],
+}
+
+impl Order {
+    fn new(sym: bool) -> Order {
         let r = cc_rules();
-        let mut y = [0.0; MID + 1];
-        for i in 0..=MID {
-            // sin(π/2 − πx/4) = cos(πx/4)
-            let c = (0.25 * PI * r.x[i]).cos();
-            y[i] = c * c;
+        let last = if sym { MID } else { NMAX - 1 };
+        let mut o = Order {
+            idx: [0; NMAX],
+            count: [0; MAX_LEVEL + 1],
+            w: [[0.0; NMAX]; MAX_LEVEL + 1],
+        };
+        let mut n = 0;
+        for lev in 2..=MAX_LEVEL {
+            let stride = 1usize << (MAX_LEVEL - lev);
+            let mut i = 0;
+            while i <= last {
+                // new at this level: level 2 takes all, later levels the odd multiples
+                if lev == 2 || (i / stride) % 2 == 1 {
+                    o.idx[n] = i;
+                    n += 1;
+                }
+                i += stride;
+            }
+            o.count[lev] = n;
+            for p in 0..n {
+                let i = o.idx[p];
+                let w = r.w[lev][i / stride];
+                // symmetric: i < MID stands for i and its mirror, and the piece is half of
+                // the rule on [−1, 1]: w for i < MID, w/2 for x = 0
+                o.w[lev][p] = if sym && i == MID { 0.5 * w } else { w };
+            }
         }
-        y
+        o
+    }
+}
+
+/// The level orders (symmetric, general) and y = sin²(ψ/2) at the far piece's nodes
+/// ψ = π − (π/2)x in the symmetric order, the same for every texel.
+struct Tables {
+    sym: Order,
+    gen: Order,
+    far_y: [f64; NMAX],
+}
+
+fn tables() -> &'static Tables {
+    static T: OnceLock<Tables> = OnceLock::new();
+    T.get_or_init(|| {
+        let r = cc_rules();
+        let sym = Order::new(true);
+        let mut far_y = [0.0; NMAX];
+        for p in 0..sym.count[MAX_LEVEL] {
+            // sin(π/2 − πx/4) = cos(πx/4)
+            let c = (0.25 * PI * r.x[sym.idx[p]]).cos();
+            far_y[p] = c * c;
+        }
+        Tables {
+            sym,
+            gen: Order::new(false),
+            far_y,
+        }
     })
 }
 
@@ -229,29 +337,34 @@ fn sin2_small(t: f64) -> f64 {
     z * p * p
 }
 
-/// The per-texel constants of the outer integrand.
-struct Node {
-    mu_v: f64,
-    sv: f64,
-    k: f64,
-    norm: f64,
+/// One outer node's roughness-independent data.
+struct OuterNode {
+    /// μl·V·dμl/dx (the outer factor without Charlie's norm); 0: the node contributes 0
+    g0: f64,
+    /// (2a, ln((n0 + B a²/4)/e0)) where the clamp of a is active: the part ψ < a holds at
+    /// most `2a·exp(k·ln(…))`
+    unresolved: Option<(f64, f64)>,
+    /// the far piece first, then the near piece's sub-panels
+    pieces: Vec<Piece>,
 }
 
-impl Node {
-    /// The outer integrand at μl = `ml` times `dml` (= dμl/dx of the outer rule), and its
-    /// error bound (the inner rules' bounds times the outer factor); `budget` is what that
-    /// bound may reach. `Err` if an inner piece does not converge within 129 nodes.
-    fn eval(&self, ml: f64, dml: f64, budget: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
-        let (mu_v, k) = (self.mu_v, self.k);
+impl OuterNode {
+    /// The node at μl = `ml` with dμl/dx = `dml`.
+    fn new(view: &View, ml: f64, dml: f64) -> OuterNode {
+        let mu_v = view.mu_v;
         if ml <= 0.0 || dml == 0.0 {
-            return Ok((0.0, 0.0));
+            return OuterNode {
+                g0: 0.0,
+                unresolved: None,
+                pieces: Vec::new(),
+            };
         }
         let ml = ml.min(1.0);
         let sl = ((1.0 - ml) * (1.0 + ml)).max(0.0).sqrt();
-        let b = 4.0 * self.sv * sl;
+        let b = 4.0 * view.sv * sl;
         // sv − sl = (μl − μv)(μl + μv)/(sv + sl), without cancellation near the breakpoint
         let c = mu_v + ml;
-        let ssum = self.sv + sl;
+        let ssum = view.sv + sl;
         let dn = if ssum > 0.0 {
             (ml - mu_v) * c / ssum
         } else {
@@ -259,11 +372,7 @@ impl Node {
         };
         let n0 = dn * dn;
         let e0 = n0 + c * c;
-        let g = self.norm * ml / (4.0 * (ml + mu_v - ml * mu_v)) * dml;
-        // each of J's two pieces (J = 2(near + far)) may use half the budget
-        let share = 0.25 * budget / g.abs().max(1e-300);
-        let pieces = Pieces { n0, e0, b, k };
-        // near piece: ψ = a sinh(S x) on [0, π/2]
+        let g0 = ml / (4.0 * (ml + mu_v - ml * mu_v)) * dml;
         let c_d = if b > 0.0 {
             (e0 / b).sqrt()
         } else {
@@ -274,113 +383,157 @@ impl Node {
         } else {
             f64::INFINITY
         };
-        // a ≥ a_min = 2c_D·δ^{1/(2k+1)}: the part ψ < a then holds at most
-        // 2a·(a/(2c_D))^{2k} = 4c_D·δ when c_N is smaller still (bounded below)
-        let a_min = 2.0 * c_d * exp_poly(UNRESOLVED.ln() / (2.0 * k + 1.0));
-        let a = (2.0 * c_n).max(a_min).min(FRAC_PI_2);
-        let mut unresolved = 0.0;
-        if 2.0 * c_n < a_min {
+        let floor = A_FLOOR * c_d;
+        let a = (2.0 * c_n).max(floor).min(FRAC_PI_2);
+        let unresolved = (2.0 * c_n < floor && floor < FRAC_PI_2).then(|| {
             // ψ < a: N/D ≤ (n0 + B a²/4)/e0 there
-            unresolved =
-                2.0 * a * exp_poly(k * ln_poly(((n0 + 0.25 * b * a * a) / e0).max(1e-300)));
-        }
+            (2.0 * a, (((n0 + 0.25 * b * a * a) / e0).max(1e-300)).ln())
+        });
+        let consts = Consts { n0, e0, b };
+        let mut pieces = vec![Piece::new(consts, Map::Far)];
         let big_s = (FRAC_PI_2 / a).asinh();
-        let (near, e_near) = pieces.run(Map::Sinh { a, big_s }, share, evals)?;
-        let (far, e_far) = pieces.run(Map::Far, share, evals)?;
-        let j = 2.0 * (near + far);
-        let ej = 2.0 * (e_near + e_far) + unresolved + 1e-15 * j;
+        let s1 = big_s.min(S_PANEL);
+        pieces.push(Piece::new(consts, Map::SinhSym { a, s1 }));
+        let n_more = ((big_s - s1) / S_PANEL).ceil() as usize;
+        for j in 0..n_more {
+            let lo = s1 + (big_s - s1) * j as f64 / n_more as f64;
+            let hi = s1 + (big_s - s1) * (j + 1) as f64 / n_more as f64;
+            pieces.push(Piece::new(consts, Map::Sinh { a, s0: lo, s1: hi }));
+        }
+        OuterNode {
+            g0,
+            unresolved,
+            pieces,
+        }
+    }
+
+    /// The outer integrand (times dμl/dx) for Charlie exponent `k` and normalization `norm`,
+    /// and its error bound (the inner rules' bounds times the outer factor); `budget` is what
+    /// that bound may reach. `Err` if an inner piece does not converge within 129 nodes.
+    fn eval(&mut self, k: f64, norm: f64, budget: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
+        if self.g0 == 0.0 {
+            return Ok((0.0, 0.0));
+        }
+        let g = norm * self.g0;
+        // J = 2·Σ pieces: each piece may use an equal part of half the budget
+        let share = 0.5 * budget / (g.abs().max(1e-300) * self.pieces.len() as f64);
+        let (mut j, mut ej) = (0.0, 0.0);
+        for p in self.pieces.iter_mut() {
+            let (t, e) = p.run(k, share, evals)?;
+            j += t;
+            ej += e;
+        }
+        let j = 2.0 * j;
+        let unresolved = self
+            .unresolved
+            .map_or(0.0, |(two_a, ln_u)| two_a * (k * ln_u).exp());
+        let ej = 2.0 * ej + unresolved + 1e-15 * j;
         Ok((g * j, g * ej))
     }
 }
 
 /// The inner integrand's constants: `(N/D)^k` with `N = n0 + B y`, `D = e0 + B y`.
-struct Pieces {
+#[derive(Clone, Copy)]
+struct Consts {
     n0: f64,
     e0: f64,
     b: f64,
-    k: f64,
 }
 
-/// Which inner piece: `[0, π/2]` as ψ = a sinh(S x), or `[π/2, π]` as ψ = π − (π/2)x.
+/// An inner piece's variable: `[π/2, π]` as ψ = π − (π/2)x (symmetric about x = 0); on
+/// `[0, π/2]`, ψ = a sinh(s) with s = s1·x (symmetric) or s ∈ [s0, s1].
 #[derive(Clone, Copy)]
 enum Map {
-    Sinh { a: f64, big_s: f64 },
     Far,
+    SinhSym { a: f64, s1: f64 },
+    Sinh { a: f64, s0: f64, s1: f64 },
 }
 
-impl Pieces {
-    /// `out[q]` = integrand × dψ/dx at the finest-level node `idx[q]` (≤ MID).
-    #[inline(always)]
-    fn eval(&self, map: Map, idx: &[usize], out: &mut [f64]) {
-        let r = cc_rules();
-        let n = idx.len();
-        let mut ys = [0.0; MID + 1];
-        let mut jac = [0.0; MID + 1];
-        match map {
-            Map::Sinh { a, big_s } => {
-                for q in 0..n {
-                    let s = big_s * r.x[idx[q]];
-                    let e = exp_poly(s);
-                    let ei = 1.0 / e;
-                    let psi = a * 0.5 * (e - ei);
-                    ys[q] = sin2_small(0.5 * psi);
-                    jac[q] = a * big_s * 0.5 * (e + ei);
-                }
-            }
-            Map::Far => {
-                let fy = far_y();
-                for q in 0..n {
-                    ys[q] = fy[idx[q]];
-                    jac[q] = FRAC_PI_2;
-                }
-            }
-        }
-        for q in 0..n {
-            let by = self.b * ys[q];
-            let ratio = (self.n0 + by) / (self.e0 + by);
-            let keep = if ratio > 1e-300 { 1.0 } else { 0.0 };
-            let l = ln_poly(ratio.max(1e-300));
-            out[q] = keep * exp_poly((self.k * l).max(-700.0)) * jac[q];
+impl Map {
+    /// Whether the integrand is even in x (nodes i ≤ MID stand for their mirrors too).
+    fn symmetric(self) -> bool {
+        !matches!(self, Map::Sinh { .. })
+    }
+}
+
+/// One inner piece of one outer node: `ln(N/D)` (`l`) and the weight factor dψ/dx (`w`, 0
+/// where N/D underflows) at its nodes in level order ([`Order`]), the first `have` filled.
+struct Piece {
+    consts: Consts,
+    map: Map,
+    have: usize,
+    l: [f64; NMAX],
+    w: [f64; NMAX],
+}
+
+impl Piece {
+    fn new(consts: Consts, map: Map) -> Piece {
+        Piece {
+            consts,
+            map,
+            have: 0,
+            l: [0.0; NMAX],
+            w: [0.0; NMAX],
         }
     }
 
-    /// ∫ over the piece (half of the symmetric rule on x ∈ [−1, 1]) and its error bound,
-    /// nested levels 2…7 until the level difference is within `share` (or rounding).
-    fn run(&self, map: Map, share: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
+    fn order(&self) -> &'static Order {
+        let t = tables();
+        if self.map.symmetric() {
+            &t.sym
+        } else {
+            &t.gen
+        }
+    }
+
+    /// Makes sure the nodes of level `lev` are filled.
+    fn ensure(&mut self, lev: usize) {
+        let o = self.order();
+        let n = o.count[lev];
+        if self.have >= n {
+            return;
+        }
         let r = cc_rules();
-        let mut vals = [0.0; MID + 1];
-        let mut idx = [0usize; MID + 1];
-        let mut out = [0.0; MID + 1];
-        let mut have = 0usize; // stride of the nodes already evaluated (0: none)
+        let t = tables();
+        let Consts { n0, e0, b } = self.consts;
+        for p in self.have..n {
+            let x = r.x[o.idx[p]];
+            let (y, jac) = match self.map {
+                Map::Far => (t.far_y[p], FRAC_PI_2),
+                Map::SinhSym { a, s1 } => sinh_node(a, s1 * x, s1),
+                Map::Sinh { a, s0, s1 } => {
+                    let h = 0.5 * (s1 - s0);
+                    sinh_node(a, s0 + h * (1.0 + x), h)
+                }
+            };
+            let ratio = (n0 + b * y) / (e0 + b * y);
+            let keep = if ratio > 1e-300 { 1.0 } else { 0.0 };
+            self.l[p] = ln_poly(ratio.max(1e-300));
+            self.w[p] = keep * jac;
+        }
+        self.have = n;
+    }
+
+    /// ∫ (N/D)^k dψ over the piece and its error bound, nested levels 2…7 until the level
+    /// difference is within `share` (or 1e-14 of the value: rounding).
+    fn run(&mut self, k: f64, share: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
+        let o = self.order();
+        let mut vals = [0.0; NMAX];
+        let mut done = 0usize;
         let mut prev = f64::NAN;
         for lev in 2..=MAX_LEVEL {
-            let stride = 1usize << (MAX_LEVEL - lev);
-            let mut m = 0;
-            let mut i = 0;
-            while i <= MID {
-                if have == 0 || i % have != 0 {
-                    idx[m] = i;
-                    m += 1;
-                }
-                i += stride;
+            self.ensure(lev);
+            let n = o.count[lev];
+            for p in done..n {
+                vals[p] = exp_poly((k * self.l[p]).max(-700.0)) * self.w[p];
             }
-            self.eval(map, &idx[..m], &mut out[..m]);
-            for q in 0..m {
-                vals[idx[q]] = out[q];
+            *evals += (n - done) as u64;
+            done = n;
+            let w = &o.w[lev];
+            let mut t = 0.0;
+            for p in 0..n {
+                t += w[p] * vals[p];
             }
-            *evals += m as u64;
-            have = stride;
-            // symmetric sum: nodes i < MID stand for i and its mirror
-            let w = &r.w[lev];
-            let mut s = 0.0;
-            let mut i = 0;
-            while i < MID {
-                s += 2.0 * w[i / stride] * vals[i];
-                i += stride;
-            }
-            s += w[MID / stride] * vals[MID];
-            // ∫ over the piece = half the rule on [−1, 1]
-            let t = 0.5 * s;
             if lev >= 3 {
                 let e = (t - prev).abs();
                 if e <= share || e <= 1e-14 * t.abs() {
@@ -391,6 +544,15 @@ impl Pieces {
         }
         Err(*evals)
     }
+}
+
+/// y = sin²(ψ/2) and dψ/dx at s (ψ = a sinh s, ds/dx = `ds_dx`).
+#[inline(always)]
+fn sinh_node(a: f64, s: f64, ds_dx: f64) -> (f64, f64) {
+    let e = exp_poly(s);
+    let ei = 1.0 / e;
+    let psi = a * 0.5 * (e - ei);
+    (sin2_small(0.5 * psi), a * 0.5 * (e + ei) * ds_dx)
 }
 
 #[cfg(test)]
@@ -435,27 +597,29 @@ mod tests {
     #[test]
     fn inner_rule_resolves_the_breakpoint_feature() {
         for &(mu_v, ml, k) in &[
+            (0.5, 0.5, 0.5),
             (0.5, 0.499, 0.5),
             (0.5, 0.4999, 2.0),
             (0.01, 0.011, 0.5),
             (0.9, 0.2, 8.0),
         ] {
-            let node = Node {
+            let sv = ((1.0f64 - mu_v) * (1.0 + mu_v)).sqrt();
+            let view = View {
                 mu_v,
-                sv: ((1.0f64 - mu_v) * (1.0 + mu_v)).sqrt(),
-                k,
-                norm: 1.0,
+                sv,
+                eps_v: mu_v.asin(),
             };
+            let mut node = OuterNode::new(&view, ml, 1.0);
             // g = ml/(4(ml + mu_v − ml mu_v)) with norm = dml = 1
             let g = ml / (4.0 * (ml + mu_v - ml * mu_v));
             let mut n = 0;
             let (v, e) = node
-                .eval(ml, 1.0, 1e-11, &mut n)
+                .eval(k, 1.0, 1e-11, &mut n)
                 .unwrap_or_else(|_| panic!("{mu_v} {ml} {k}: no convergence"));
             let sl = ((1.0f64 - ml) * (1.0 + ml)).sqrt();
             let f = |psi: f64| {
                 let x = (psi / 2.0).sin().powi(2);
-                let num = (node.sv - sl).powi(2) + 4.0 * node.sv * sl * x;
+                let num = (sv - sl).powi(2) + 4.0 * sv * sl * x;
                 (num / (num + (mu_v + ml).powi(2))).powf(k)
             };
             let brute = |m: usize| {
