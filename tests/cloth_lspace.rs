@@ -259,3 +259,43 @@ fn wide_lspace_cloth_refuses_what_it_does_not_cover() {
     }
     assert_eq!(charlie_sheen_wide(0.5, 0.5, 0.0).unwrap_err(), 0);
 }
+
+/// The wide path is the one the wide rows of a 128² filament-dfg table use (rows 32–127:
+/// μ = (i + ½)/128, α = ((j + ½)/128)² ≥ 1/16), column by column with the shared node data:
+/// it must converge at every texel within the tolerance, with at most 1,450 evaluations per
+/// texel on average (the half-vector kernel spends 1,761 there), and give the same bits as
+/// the same texel computed alone (every 9th column and row: the value is a pure function
+/// of (μ, α, tol), whatever the cache held before).
+#[test]
+fn wide_lspace_cloth_covers_the_wide_rows_and_sharing_changes_no_bit() {
+    let n = 128;
+    let (mut total, mut evals) = (0u64, 0u64);
+    for i in 0..n {
+        let mu = (i as f64 + 0.5) / n as f64;
+        let mut cache = sheen_wide::WideCache::default();
+        for j in 32..n {
+            let r = (j as f64 + 0.5) / n as f64;
+            let alpha = r * r;
+            let e = sheen_wide::charlie_sheen_wide_shared(mu, alpha, LIB_TOL, &mut cache)
+                .unwrap_or_else(|n| panic!("mu={mu} alpha={alpha}: gave up after {n} evaluations"));
+            assert!(e.error[0] <= LIB_TOL && e.value[0].is_finite() && e.value[0] > 0.0);
+            total += 1;
+            evals += e.evals;
+            if i % 9 == 0 && j % 9 == 0 {
+                let alone = charlie_sheen_wide(mu, alpha, LIB_TOL).expect("converges alone");
+                assert_eq!(
+                    alone.value[0].to_bits(),
+                    e.value[0].to_bits(),
+                    "mu={mu} alpha={alpha}"
+                );
+                assert_eq!(alone.error[0].to_bits(), e.error[0].to_bits());
+                assert_eq!(alone.evals, e.evals);
+            }
+        }
+    }
+    assert!(
+        evals <= 1450 * total,
+        "{} evaluations per texel",
+        evals as f64 / total as f64
+    );
+}

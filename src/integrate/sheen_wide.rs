@@ -38,34 +38,32 @@
 //!
 //! **Inner rule (ψ).** Split at ψ = π/2. On `[π/2, π]` the integrand is analytic within
 //! O(1) of the interval and even about ψ = π: Clenshaw–Curtis in `ψ = π − (π/2)x`,
-//! x ∈ [−1, 1] (each node and its mirror once). On `[0, π/2]`, `ψ = a sinh(S x)`, `a = 2c_N`
-//! (clamped to `[2c_D·δ^{1/(2k+1)}, π/2]`, δ = 10⁻¹²), `S = asinh((π/2)/a)`: in s = Sx the singularities of
-//! both scales lie at distance ~π/2 from the real axis (a sinh map turns each scale between
-//! a and π/2 into an O(1) feature: Trefethen & Weideman 2014, "The exponentially convergent
-//! trapezoidal rule", SIAM Review 56, §14 on such maps), and the integrand is even in x. Both
-//! pieces run nested levels (5 … 129 nodes, halved by symmetry) until `|T_m − T_{m/2}|`
-//! times the node's outer factor is below its share of the tolerance (or below 1e-14 of
-//! T_m, rounding); that difference plus 1e-15 of the value is the node's error bound. Where
-//! the lower clamp of a is active (the breakpoint node itself), the part ψ < a that the map
-//! does not resolve is bounded by `a·((c_N² + a²/4)/c_D²)^k` and added to the bound.
-//! `Err(evaluations)` if a piece does not converge within 129 nodes, a panel within 129
-//! nodes, or the texel within [`EVAL_CAP`] evaluations.
+//! x ∈ [−1, 1] (each node and its mirror once). On `[0, π/2]`, `ψ = a sinh s`, `a = 2c_N`
+//! (clamped to `[3·10⁻⁷ c_D, π/2]`), s ∈ [0, S], `S = asinh((π/2)/a)`: in s the
+//! singularities of both scales lie at distance ~π/2 from the real axis (a sinh map turns
+//! each scale between a and π/2 into an O(1) feature: Trefethen & Weideman 2014, "The
+//! exponentially convergent trapezoidal rule", SIAM Review 56, §14 on such maps). The
+//! integrand is even in s: Clenshaw–Curtis on `[−s₁, s₁]`, s₁ = min(S, 8) (each node and its
+//! mirror once), and on equal sub-panels of length ≤ 8 up to S (only near the breakpoint,
+//! where S reaches ~25). Every piece runs nested levels (5 … 129 nodes) until
+//! `|T_m − T_{m/2}|` times the node's outer factor is below its share of the tolerance (or
+//! below 1e-14 of T_m, rounding); that difference plus 1e-15 of the value is the node's
+//! error bound. Where the lower clamp of a is active (at and next to the breakpoint), the
+//! part ψ < a that the map does not resolve holds at most `2a·((c_N² + a²/4)/c_D²)^k`
+//! (≤ 2·10⁻¹³ c_D), added to the bound. `Err(evaluations)` if a piece does not converge
+//! within 129 nodes, a panel within 129 nodes, or the texel within [`EVAL_CAP`] evaluations.
 //!
-//! **Cost: not used by the bake.** Over the wide rows of a 128² `filament-dfg` table
-//! (`cargo run --release --example cloth_cost`, one thread, tol 1e-7) this path converges at
-//! every texel with 1,419 evaluations per texel against the half-vector kernel's 1,761
-//! ([`charlie_sheen_shared`](super::dfg_kernel::charlie_sheen_shared)), but takes ~83 µs per
-//! texel against ~28 µs: the kernel shares everything but `exp(k ln sin²θh)` across the
-//! roughness rows of a column (~16 ns per evaluation), while here every evaluation computes
-//! its node, `N/D`, a logarithm and an exponential (~58 ns). The near piece (~17–33
-//! evaluations per outer node) is most of the count. Sharing the α-independent part the same
-//! way would need a node set independent of k (the clamp of a above depends on k) and would
-//! still save only the ~20% fewer evaluations, so [`cloth_texel`] keeps the kernel for wide
-//! lobes.
+//! **Shared across a table column.** Every node (outer z, inner ψ) and `ln(N/D)` there
+//! depends on μv alone, not on α: [`WideCache`] keeps them for the view (filled as texels
+//! ask for them), and a texel then costs one `exp(k ln(N/D))` per evaluation, as the
+//! half-vector kernel's [`SheenCache`](super::dfg_kernel::SheenCache) does. Over the wide
+//! rows of a 128² `filament-dfg` table (`cargo run --release --example cloth_cost`, one
+//! thread, tol 1e-7): 1,351 evaluations per texel against the half-vector kernel's 1,761,
+//! every texel converged, ~2× less CPU time. Without the sharing this path takes ~3× the
+//! kernel's time (~58 ns per evaluation: node, N/D, a logarithm and an exponential).
 //!
-//! [`cloth_texel`]: crate::table::dfg
-//! Determinism: fixed nodes and summation order; nothing is shared between calls, so the
-//! value is a pure function of (μv, α, tol).
+//! Determinism: fixed nodes and summation order; a cache entry is a pure function of μv and
+//! the node, so the value is a pure function of (μv, α, tol), with or without the cache.
 
 // Node loops index several same-length arrays at once.
 #![allow(clippy::needless_range_loop)]
@@ -88,14 +86,17 @@ pub const EVAL_CAP: u64 = 6000;
 /// Lower clamp of the near map's scale a, relative to c_D: where it is active the part
 /// ψ < a holds at most `2a·(a/(2c_D))^{2k} ≤ A_FLOOR²·c_D` (k ≥ ½), ≤ 1e-13·c_D.
 const A_FLOOR: f64 = 3e-7;
-/// Length in s of the near piece's sub-panels (the symmetric first one: [−S_PANEL, S_PANEL]).
+/// Longest sub-panel in s of the near piece (the symmetric first one: [−S_PANEL, S_PANEL]);
+/// measured over a 128² table: 3 → 1,727 evaluations per texel, 6 → 1,519, 8 → 1,478,
+/// 12 → 1,472 (at inner share 0.05).
 const S_PANEL: f64 = 8.0;
 /// Share of a panel's tolerance that one outer node's inner error (times its outer factor)
-/// may use (outer weights sum to 2, so the inner errors use at most a tenth).
+/// may use (outer weights sum to 2, so the inner errors use at most 30%; 0.05 → 0.15 took
+/// a 128² table's wide rows from 1,478 to 1,351 evaluations per texel).
 const INNER_SHARE: f64 = 0.15;
 
 /// What this path does, for documentation and the benchmarks.
-pub const METHOD: &str = "wide cloth lobes (1/16 <= alpha <= 1) in light-direction coordinates (src/integrate/sheen_wide.rs): outer nested Clenshaw-Curtis in pi/2 - theta_l = (pi/2 - theta_v) sinh z on two panels split at theta_l = theta_v (where h = n makes (sin theta_h)^(1/alpha) non-analytic); inner azimuthal integral split at psi = pi - phi = pi/2, nested Clenshaw-Curtis in psi on [pi/2, pi] and in psi = a sinh(s) on [0, pi/2] (a = 2|sin theta_l - sin theta_v|/(2 sqrt(sin theta_l sin theta_v)), the width of the h = n feature; s in panels of length 3); the roughness-independent node data shared by a table column; estimate from the nested levels plus the inner bounds";
+pub const METHOD: &str = "wide cloth lobes (1/16 <= alpha <= 1) in light-direction coordinates (src/integrate/sheen_wide.rs): outer nested Clenshaw-Curtis in pi/2 - theta_l = (pi/2 - theta_v) sinh z on two panels split at theta_l = theta_v (where h = n makes (sin theta_h)^(1/alpha) non-analytic); inner azimuthal integral split at psi = pi - phi = pi/2, nested Clenshaw-Curtis in psi on [pi/2, pi] and in psi = a sinh(s) on [0, pi/2] (a = |sin theta_l - sin theta_v|/sqrt(sin theta_l sin theta_v), the width of the h = n feature; s in panels of length <= 8); the roughness-independent node data shared by a table column; estimate from the nested levels plus the inner bounds";
 
 /// The cloth albedo at view cosine `mu_v` ∈ (0, 1] and Charlie α ∈ [1/16, 1], to absolute
 /// tolerance `tol` (estimated, see the module docs); `Err(evaluations spent)` where the
