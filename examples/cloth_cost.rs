@@ -1,5 +1,5 @@
 //! Cost of the cloth channel of a `filament-dfg`-style table (μ = (i + ½)/N, α = ((j + ½)/N)²),
-//! per path, on one thread: evaluations per texel and CPU time, for the narrow rows
+//! per path, on one thread: evaluations per texel and the thread's CPU time, for the narrow rows
 //! (α < 1/16) and the wide rows separately. Narrow rows: `sheen_l`, then the half-vector
 //! kernel where it gives up (as the bake does). Wide rows: `sheen_wide` first (the
 //! experiment; the kernel where it gives up), or with `old` the half-vector kernel alone (as
@@ -13,7 +13,18 @@ use brdfbake::integrate::dfg_kernel::{charlie_sheen_shared, Column, SheenCache};
 use brdfbake::integrate::sheen_l::{charlie_sheen_l, MAX_ALPHA};
 use brdfbake::integrate::sheen_wide::{charlie_sheen_wide_shared, WideCache};
 use std::cell::RefCell;
-use std::time::Instant;
+
+/// CPU time of this thread (not wall time: other load on the machine does not count).
+fn thread_cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    assert_eq!(rc, 0, "clock_gettime");
+    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -32,7 +43,7 @@ fn main() {
             let r = (j as f64 + 0.5) / n as f64;
             let alpha = r * r;
             let wide = alpha >= MAX_ALPHA;
-            let t0 = Instant::now();
+            let t0 = thread_cpu_seconds();
             let mut spent = 0;
             let mut fell = 0;
             if !wide || !old {
@@ -58,7 +69,7 @@ fn main() {
                     }
                 }
             }
-            let dt = t0.elapsed().as_secs_f64();
+            let dt = thread_cpu_seconds() - t0;
             let a = &mut acc[wide as usize];
             a.0 += 1;
             a.1 += spent;

@@ -199,6 +199,8 @@ fn panel(
     let mut val = [0.0; NMAX];
     let mut err = [0.0; NMAX];
     let mut q = [0.0; MAX_LEVEL + 1];
+    // the inner rules' values of one piece (each piece reads only what it wrote)
+    let mut scratch = [0.0; NMAX];
     let half = 0.5 * (z1 - z0);
     let budget = INNER_SHARE * tol;
     for lev in 1..=MAX_LEVEL {
@@ -218,7 +220,7 @@ fn panel(
                         OuterNode::new(view, sn, cs * deps)
                     })
                 });
-                let (v, e) = node.eval(k, norm, budget, evals)?;
+                let (v, e) = node.eval(k, norm, budget, &mut scratch, evals)?;
                 val[i] = v;
                 err[i] = e;
                 done[i] = true;
@@ -411,7 +413,14 @@ impl OuterNode {
     /// The outer integrand (times dμl/dx) for Charlie exponent `k` and normalization `norm`,
     /// and its error bound (the inner rules' bounds times the outer factor); `budget` is what
     /// that bound may reach. `Err` if an inner piece does not converge within 129 nodes.
-    fn eval(&mut self, k: f64, norm: f64, budget: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
+    fn eval(
+        &mut self,
+        k: f64,
+        norm: f64,
+        budget: f64,
+        scratch: &mut [f64; NMAX],
+        evals: &mut u64,
+    ) -> Result<(f64, f64), u64> {
         if self.g0 == 0.0 {
             return Ok((0.0, 0.0));
         }
@@ -420,7 +429,7 @@ impl OuterNode {
         let share = 0.5 * budget / (g.abs().max(1e-300) * self.pieces.len() as f64);
         let (mut j, mut ej) = (0.0, 0.0);
         for p in self.pieces.iter_mut() {
-            let (t, e) = p.run(k, share, evals)?;
+            let (t, e) = p.run(k, share, scratch, evals)?;
             j += t;
             ej += e;
         }
@@ -517,9 +526,14 @@ impl Piece {
 
     /// ∫ (N/D)^k dψ over the piece and its error bound, nested levels 2…7 until the level
     /// difference is within `share` (or 1e-14 of the value: rounding).
-    fn run(&mut self, k: f64, share: f64, evals: &mut u64) -> Result<(f64, f64), u64> {
+    fn run(
+        &mut self,
+        k: f64,
+        share: f64,
+        vals: &mut [f64; NMAX],
+        evals: &mut u64,
+    ) -> Result<(f64, f64), u64> {
         let o = self.order();
-        let mut vals = [0.0; NMAX];
         let mut done = 0usize;
         let mut prev = f64::NAN;
         for lev in 2..=MAX_LEVEL {
@@ -615,7 +629,7 @@ mod tests {
             let g = ml / (4.0 * (ml + mu_v - ml * mu_v));
             let mut n = 0;
             let (v, e) = node
-                .eval(k, 1.0, 1e-11, &mut n)
+                .eval(k, 1.0, 1e-11, &mut [0.0; NMAX], &mut n)
                 .unwrap_or_else(|_| panic!("{mu_v} {ml} {k}: no convergence"));
             let sl = ((1.0f64 - ml) * (1.0 + ml)).sqrt();
             let f = |psi: f64| {
