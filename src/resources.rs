@@ -148,7 +148,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Albedo => (albedo, 0.0),
         K::AlbedoAvg => (avg, 0.0),
         // cloth: 1,585 per texel measured with its light-direction path for narrow lobes
-        // (cloth4), 1,277 with the one for wide lobes too (cloth5: filament-dfg 35,917,171
+        // (cloth4), 1,286 with the one for wide lobes too (cloth5: filament-dfg 36,066,234
         // evaluations with cloth, 14,992,751 without, over 16,384 texels)
         K::Dfg => (dfg + if spec.cloth { 1_300.0 } else { 0.0 }, 0.0),
         K::KullaConty => (albedo, avg),

@@ -30,7 +30,8 @@
 //! the visibility layer `μl/(μl + μv)` of width ~μv at the horizon and the features of J,
 //! which scale with μl + μv at grazing views, are O(1)-wide in z, and the breakpoint θl = θv
 //! is the fixed point `z_b = asinh 1`. Two panels, `z ∈ [0, z_b]` and `[z_b, asinh((π/2)/ε_v)]`,
-//! each with nested Clenshaw–Curtis levels (9 … 129 nodes) and the estimate of
+//! each with nested Clenshaw–Curtis levels (17 … 129 nodes; the estimate of 9 nodes against 5
+//! was once barely above the error) and the estimate of
 //! [`tensor`](super::tensor) (`max(|Q_k − Q_{k−1}|, |Q_{k−1} − Q_{k−2}|²/max(|Q_k|, tol))`),
 //! plus the inner rules' error bounds summed with the outer weights; each panel gets half the
 //! tolerance. The breakpoint is an end of both panels, where the non-analytic term is an
@@ -58,8 +59,8 @@
 //! ask for them), and a texel then costs one `exp(k ln(N/D))` per evaluation, as the
 //! half-vector kernel's [`SheenCache`](super::dfg_kernel::SheenCache) does. Over the wide
 //! rows of a 128² `filament-dfg` table (`cargo run --release --example cloth_cost`, one
-//! thread, tol 1e-7): 1,351 evaluations per texel against the half-vector kernel's 1,761,
-//! every texel converged, ~2× less CPU time. Without the sharing this path takes ~3× the
+//! thread, tol 1e-7): 1,363 evaluations per texel against the half-vector kernel's 1,761,
+//! every texel converged, ~1.8× less CPU time. Without the sharing this path takes ~3× the
 //! kernel's time (~58 ns per evaluation: node, N/D, a logarithm and an exponential).
 //!
 //! Determinism: fixed nodes and summation order; a cache entry is a pure function of μv and
@@ -92,7 +93,8 @@ const A_FLOOR: f64 = 3e-7;
 const S_PANEL: f64 = 8.0;
 /// Share of a panel's tolerance that one outer node's inner error (times its outer factor)
 /// may use (outer weights sum to 2, so the inner errors use at most 30%; 0.05 → 0.15 took
-/// a 128² table's wide rows from 1,478 to 1,351 evaluations per texel).
+/// a 128² table's wide rows from 1,478 to 1,351 evaluations per texel; the outer panels'
+/// estimate from level 4 on, not 3, then 1,363).
 const INNER_SHARE: f64 = 0.15;
 
 /// What this path does, for documentation and the benchmarks.
@@ -232,7 +234,7 @@ fn panel(
             se += w * err[i];
         }
         q[lev] = s;
-        if lev >= 3 {
+        if lev >= 4 {
             let d = |x: f64, y: f64| (x - y).abs();
             let e_out = d(q[lev], q[lev - 1])
                 .max(d(q[lev - 1], q[lev - 2]).powi(2) / q[lev].abs().max(tol));
