@@ -6,7 +6,8 @@
 //! * `method/<integral>`: one integral at one point by each public entry point —
 //!   brdfbake's adaptive Gauss–Kronrod (`table::albedo`, `table::dfg`, the hemisphere
 //!   integrator itself) at the presets' default tolerance 1e-7, and importance-sampled Monte
-//!   Carlo on 4096 Hammersley points (`integrate::monte_carlo`) for comparison.
+//!   Carlo on 4096 Hammersley points (`integrate::monte_carlo`) for comparison; the
+//!   classic-albedo 1D fast path against the laws integrator.
 //!
 //! `cargo test` does not run these (only `cargo bench` or `cargo test --benches` does).
 //! Whole-process timings against the targets: `scripts/bench.sh`.
@@ -15,6 +16,7 @@ use brdfbake::integrate::hemisphere::integrate_over_l;
 use brdfbake::integrate::monte_carlo::{estimate_over_l, Sampling};
 use brdfbake::model::{Brdf, Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::albedo::{average_albedo, directional_albedo};
+use brdfbake::table::classic::{fast_albedo, view_albedo, ClassicModel};
 use brdfbake::table::dfg::{sheen_albedo, split_sum};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use std::time::Duration;
@@ -117,6 +119,26 @@ fn methods(c: &mut Criterion) {
         let n = Ndf::new(NdfKind::Gaussian, 0.3).expect("m");
         b.iter(|| n.g1_numeric(black_box(0.3)))
     });
+    // the classic-albedo texels: the 1D fast path (integrate::classic_lobes) against the
+    // laws integrator it is tried before
+    for (c, p) in [
+        (ClassicModel::BlinnPhong { ks: 1.0 }, 48.0),
+        (ClassicModel::ModifiedPhong { kd: 0.0, ks: 1.0 }, 48.0),
+        (
+            ClassicModel::WardGmd {
+                rho_d: 0.0,
+                rho_s: 1.0,
+            },
+            0.25,
+        ),
+    ] {
+        g.bench_function(format!("classic E {}: 1D fast path", c.name()), |b| {
+            b.iter(|| fast_albedo(black_box(&c), black_box(MU), p, TOL))
+        });
+        g.bench_function(format!("classic E {}: laws G7/K15", c.name()), |b| {
+            b.iter(|| view_albedo(c.reflectance(p, 1.0), black_box(MU), 0.0, TOL))
+        });
+    }
     g.finish();
 }
 

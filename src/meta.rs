@@ -221,7 +221,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
         },
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
-            crate::table::classic::METHOD.into()
+            crate::table::classic::method(spec)
         }
         TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation".into(),
         TableKind::Albedo
@@ -279,6 +279,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
             crate::integrate::ggx_polar::METHOD,
             crate::integrate::dfg_kernel::METHOD
+        )
+    } else {
+        method
+    };
+    let method = if spec.kind == TableKind::Dfg && crate::table::dfg::rows_interpolated(spec) {
+        format!(
+            "Split-sum channels row by row: {} Rows are first cut at mu = 0.01 (texels closer to grazing: one row interval, usually computed texel by texel). Each node: {method}",
+            crate::integrate::interp1d::METHOD
         )
     } else {
         method

@@ -149,8 +149,20 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::AlbedoAvg => (avg, 0.0),
         // cloth: 1,585 per texel measured with its light-direction path for narrow lobes
         // (cloth4), 1,286 with the one for wide lobes too (cloth5: filament-dfg 36,066,234
-        // evaluations with cloth, 14,992,751 without, over 16,384 texels)
-        K::Dfg => (dfg + if spec.cloth { 1_300.0 } else { 0.0 }, 0.0),
+        // evaluations with cloth, 14,992,751 without, over 16,384 texels). GGX rows
+        // interpolated in √μ (src/integrate/interp1d.rs) cost per row about 40,000 + 85 per
+        // texel (measured: 50,700 per 128-texel row, 82,800 per 512-texel row of
+        // karis-envbrdf, 2026-11-30), never more than texel by texel
+        K::Dfg => {
+            let cloth = if spec.cloth { 1_300.0 } else { 0.0 };
+            if crate::table::dfg::rows_interpolated(spec) {
+                let nx = spec.axes[0].size as f64;
+                let row = (40_000.0 + 85.0 * nx).min(dfg * nx);
+                (cloth, row)
+            } else {
+                (dfg + cloth, 0.0)
+            }
+        }
         K::KullaConty => (albedo, avg),
         K::AlbedoFresnel => (1_200.0, 0.0),
         // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
@@ -158,9 +170,24 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // src/table/dielectric.rs)
         K::DielectricBtdf => (5_100.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
-        // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths)
-        K::ClassicAlbedo => (15_000.0, 0.0),
+        // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
+        // Models with the 1D fast path (src/integrate/classic_lobes.rs) measured on the
+        // `classic-albedo` preset (2026-11-30): blinn-phong 46, modified-phong 29 (phong the
+        // same), ward-gmd 86 per texel; each evaluation costs a few transcendental
+        // functions (~0.2-0.6 us), more than the 100 ns assumed.
+        K::ClassicAlbedo => (classic_evals_per_texel(spec.model.classic.as_ref()), 0.0),
         K::ClassicAlbedoAniso => (300_000.0, 0.0),
+    }
+}
+
+/// Typical evaluations per texel of a `classic-albedo` table (see [`evals_per_texel`]).
+fn classic_evals_per_texel(c: Option<&crate::table::classic::ClassicModel>) -> f64 {
+    use crate::table::classic::ClassicModel as C;
+    match c {
+        Some(C::BlinnPhong { .. }) => 50.0,
+        Some(C::ModifiedPhong { .. } | C::Phong { .. }) => 30.0,
+        Some(C::WardGmd { .. }) => 90.0,
+        _ => 15_000.0,
     }
 }
 

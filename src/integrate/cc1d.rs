@@ -41,8 +41,24 @@ pub fn nested_cc<const N: usize, F: FnMut(f64) -> [f64; N]>(
     tol: f64,
     max_level: usize,
 ) -> Result<Estimate<N>, u64> {
+    nested_cc_from(f, a, b, tol, FIRST_LEVEL, max_level)
+}
+
+/// [`nested_cc`] that accepts a level only from `min_level` on (at least
+/// [`FIRST_LEVEL`]): the levels below are computed (they are nested in it, so they cost
+/// nothing extra) but not accepted, for integrands whose 9-node estimate is not yet in the
+/// geometric regime.
+pub fn nested_cc_from<const N: usize, F: FnMut(f64) -> [f64; N]>(
+    f: &mut F,
+    a: f64,
+    b: f64,
+    tol: f64,
+    min_level: usize,
+    max_level: usize,
+) -> Result<Estimate<N>, u64> {
     let r = rules();
     let max_level = max_level.clamp(FIRST_LEVEL, MAX_LEVEL);
+    let min_level = min_level.clamp(FIRST_LEVEL, max_level);
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
     let mut vals = [[0.0f64; N]; NMAX];
     let mut evals = 0u64;
@@ -85,7 +101,7 @@ pub fn nested_cc<const N: usize, F: FnMut(f64) -> [f64; N]>(
                 ok = false;
             }
         }
-        if ok {
+        if ok && k >= min_level {
             return Ok(e);
         }
         if !e.error.iter().all(|x| x.is_finite()) {

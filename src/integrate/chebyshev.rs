@@ -67,14 +67,7 @@ impl ChebFn {
         };
         let p = &ps[i.min(ps.len() - 1)];
         let t = ((2.0 * x - p.a - p.b) / (p.b - p.a)).clamp(-1.0, 1.0);
-        let mut b1 = 0.0;
-        let mut b2 = 0.0;
-        for k in (1..=DEG).rev() {
-            let b0 = p.coef[k] + 2.0 * t * b1 - b2;
-            b2 = b1;
-            b1 = b0;
-        }
-        p.coef[0] + t * b1 - b2
+        clenshaw(&p.coef, t)
     }
 
     pub fn panel_count(&self) -> usize {
@@ -91,16 +84,37 @@ fn fit<F: FnMut(f64) -> f64>(f: &mut F, a: f64, b: f64) -> [f64; DEG + 1] {
         *vj = f(0.5 * (a + b) + 0.5 * (b - a) * t);
     }
     let mut c = [0.0; DEG + 1];
-    for (k, ck) in c.iter_mut().enumerate() {
-        let mut s = 0.0;
-        for (j, vj) in v.iter().enumerate() {
-            let w = if j == 0 || j == n { 0.5 } else { 1.0 };
-            s += w * vj * (std::f64::consts::PI * (j * k) as f64 / n as f64).cos();
-        }
-        let scale = if k == 0 || k == n { 1.0 } else { 2.0 };
-        *ck = s * scale / n as f64;
-    }
+    c.copy_from_slice(&lobatto_coefficients(&v));
     c
+}
+
+/// The Chebyshev coefficients `c_k` of the degree-n polynomial through the values `v[j]` at
+/// the Lobatto points `t_j = cos(πj/n)`, `n = v.len() − 1 ≥ 1` (the discrete cosine transform
+/// of type I; ATAP ch. 3).
+pub fn lobatto_coefficients(v: &[f64]) -> Vec<f64> {
+    let n = v.len() - 1;
+    (0..=n)
+        .map(|k| {
+            let mut s = 0.0;
+            for (j, vj) in v.iter().enumerate() {
+                let w = if j == 0 || j == n { 0.5 } else { 1.0 };
+                s += w * vj * (std::f64::consts::PI * (j * k) as f64 / n as f64).cos();
+            }
+            let scale = if k == 0 || k == n { 1.0 } else { 2.0 };
+            s * scale / n as f64
+        })
+        .collect()
+}
+
+/// `Σ_k c_k T_k(t)` by Clenshaw's recurrence.
+pub fn clenshaw(c: &[f64], t: f64) -> f64 {
+    let (mut b1, mut b2) = (0.0, 0.0);
+    for k in (1..c.len()).rev() {
+        let b0 = c[k] + 2.0 * t * b1 - b2;
+        b2 = b1;
+        b1 = b0;
+    }
+    c[0] + t * b1 - b2
 }
 
 #[cfg(test)]

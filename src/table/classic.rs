@@ -25,6 +25,10 @@
 //!   and `E_y` at φv = 90° (view in the y–n plane). These models depend on the tangent
 //!   components only through squares or products ωi,x ωo,x and ωi,y ωo,y, so
 //!   E(φ) = E(−φ) = E(π − φ): the average is taken over [0, π/2].
+//! * **Fast path**: `phong`, `modified-phong`, `blinn-phong` and `ward-gmd` (isotropic)
+//!   are first integrated by [`crate::integrate::classic_lobes`] (azimuth in closed form,
+//!   one 1D nested Clenshaw–Curtis integral per piece; [`fast_albedo`]); a texel whose
+//!   estimate does not reach the tolerance, and every other model, as follows.
 //! * **Quadrature**: the energy-law integrator of [`crate::laws`] (nested adaptive
 //!   Gauss–Kronrod G7/K15 over the half vector, exact horizon, asinh lobe warp), applied to
 //!   the model with its arguments swapped so that the view is the fixed direction; the
@@ -543,6 +547,82 @@ fn azimuth_average(m: &dyn Reflectance, theta: f64, e0: Albedo, ey: Albedo, tol:
     }
 }
 
+/// The view-side albedo of an isotropic model at parameter `p` by the 1D fast path of
+/// [`classic_lobes`] where one exists for the model (blinn-phong, modified-phong, phong,
+/// ward-gmd): `None` for other models, `Some(Err(evaluations spent))` where its estimate
+/// does not reach `tol`, `None` also at cos θv ≤ 0 (left to the laws integrator's own
+/// convention there; tables reject that cosine). The lobe weight scales the lobe (its tolerance is divided by it);
+/// a Lambert term adds its albedo, exactly its weight.
+pub fn fast_albedo(c: &ClassicModel, mu: f64, p: f64, tol: f64) -> Option<Result<Albedo, u64>> {
+    let (lambert, weight, lobe) = fast_lobe(c)?;
+    if mu.is_nan() || mu <= 0.0 {
+        return None;
+    }
+    if weight == 0.0 {
+        return Some(Ok(Albedo {
+            value: lambert,
+            error: 0.0,
+            evals: 0,
+        }));
+    }
+    Some(lobe(mu, p, tol / weight).map(|e| Albedo {
+        value: lambert + weight * e.value[0],
+        error: weight * e.error[0],
+        evals: e.evals,
+    }))
+}
+
+type Lobe = fn(f64, f64, f64) -> Result<crate::integrate::Estimate<1>, u64>;
+
+/// The Lambert weight, lobe weight and 1D fast path of a model that has one.
+fn fast_lobe(c: &ClassicModel) -> Option<(f64, f64, Lobe)> {
+    use crate::integrate::classic_lobes as cl;
+    Some(match *c {
+        ClassicModel::BlinnPhong { ks } => (0.0, ks, cl::blinn_phong_albedo),
+        ClassicModel::ModifiedPhong { kd, ks } => (kd, ks, cl::modified_phong_albedo),
+        ClassicModel::Phong { ks } => (0.0, ks, cl::phong_albedo),
+        ClassicModel::WardGmd { rho_d, rho_s } => (rho_d, rho_s, cl::ward_gmd_albedo),
+        _ => return None,
+    })
+}
+
+/// The quadrature method of a classic table, as the sidecar states it: the 1D fast path
+/// first where the model has one ([`fast_albedo`]), the energy-law integrator otherwise.
+pub fn method(spec: &TableSpec) -> String {
+    let c = spec.model.classic.as_ref().expect("a classic table");
+    if fast_lobe(c).is_none() {
+        return METHOD.into();
+    }
+    let (which, rest) = if spec.kind == TableKind::ClassicAlbedoAniso {
+        (
+            "the isotropic texels (anisotropy a = 0) first by the 1D fast path: ",
+            "every texel with a > 0, and an isotropic texel whose estimate does not reach the tolerance",
+        )
+    } else {
+        (
+            "first by the 1D fast path: ",
+            "a texel whose estimate does not reach the tolerance",
+        )
+    };
+    format!(
+        "{which}{}; {rest}: {METHOD}",
+        crate::integrate::classic_lobes::METHOD
+    )
+}
+
+/// The isotropic view-side albedo of `m` (the model `c` at parameter `p`): the fast path,
+/// else the energy-law integrator (counting the evaluations of an abandoned fast attempt).
+fn isotropic_albedo(c: &ClassicModel, m: &ViewFixed, mu: f64, p: f64, tol: f64) -> Albedo {
+    let spent = match fast_albedo(c, mu, p, tol) {
+        Some(Ok(a)) => return a,
+        Some(Err(spent)) => spent,
+        None => 0,
+    };
+    let mut a = directional_albedo(m, mu.clamp(0.0, 1.0).acos(), 0.0, tol);
+    a.evals += spent;
+    a
+}
+
 pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
     let c = *spec.model.classic.as_ref().expect("validated");
     let axes = spec.axes.clone();
@@ -558,23 +638,18 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
         };
         let m = ViewFixed(c.reflectance(p, asp));
         let theta = mu.clamp(0.0, 1.0).acos();
+        if !aniso || m.isotropic() {
+            // (a = 0, or a model that stays isotropic: every azimuth is the same, and the
+            // three channels of the 3D kind are the isotropic table's value)
+            let e0 = isotropic_albedo(&c, &m, mu, p, tol);
+            let n = if aniso { 3 } else { 1 };
+            return TexelResult {
+                value: vec![e0.value; n],
+                error: vec![e0.error; n],
+                evals: e0.evals,
+            };
+        }
         let e0 = directional_albedo(&m, theta, 0.0, tol);
-        if !aniso {
-            return TexelResult {
-                value: vec![e0.value],
-                error: vec![e0.error],
-                evals: e0.evals,
-            };
-        }
-        if m.isotropic() {
-            // a = 0 (or a model that stays isotropic): every azimuth is the same, and the
-            // three channels are the isotropic table's value
-            return TexelResult {
-                value: vec![e0.value; 3],
-                error: vec![e0.error; 3],
-                evals: e0.evals,
-            };
-        }
         let ey = directional_albedo(&m, theta, FRAC_PI_2, tol);
         let avg = azimuth_average(&m, theta, e0, ey, tol);
         TexelResult {

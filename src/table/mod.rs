@@ -102,8 +102,15 @@ pub fn bake_until(
     // The texel results in blocks: one block per column (axis-0 index) for dfg tables, which
     // are computed a column (one view μ, all roughnesses) per task so that the column's view
     // data is built once (dfg::column_fn); one block in texel order otherwise.
-    let by_column = spec.kind == TableKind::Dfg;
-    let blocks: Vec<Vec<TexelResult>> = if by_column {
+    let interpolated = if spec.kind == TableKind::Dfg {
+        dfg::by_rows(spec, &out_of_time)
+    } else {
+        None
+    };
+    let by_column = spec.kind == TableKind::Dfg && interpolated.is_none();
+    let blocks: Vec<Vec<TexelResult>> = if let Some(t) = interpolated {
+        vec![t]
+    } else if by_column {
         let column = dfg::column_fn(spec);
         (0..dims[0])
             .into_par_iter()

@@ -1,0 +1,394 @@
+//! A smooth, expensive function at the points of one table line (a row of texels), by
+//! adaptive Chebyshev interpolation of values computed at fewer points.
+//!
+//! **Why.** Along a row of a split-sum table (one roughness, every view μ) the integrals are
+//! analytic functions of `x = √μ` on the texels' range (the substitution absorbs the
+//! square-root behaviour of the view direction near grazing). A 128-texel row of GGX's split
+//! sum is resolved to 1e-7 by 33–65 Chebyshev nodes; computing those nodes (at a tighter
+//! tolerance) and interpolating costs ~0.7 of 128 quadratures, and ~0.3 of 512.
+//!
+//! **Method.** On an interval the function is sampled at the Chebyshev–Lobatto points of
+//! degree n = 8, 16, 32, 64 (nested: raising the degree keeps every value) and expanded in
+//! Chebyshev polynomials (Trefethen, *Approximation Theory and Approximation Practice*, SIAM
+//! 2013, ch. 3). The coefficients of an analytic function decay geometrically, so the last
+//! two, `|c_{n−1}| + |c_n|`, estimate what truncation leaves out (ATAP ch. 8; the test of
+//! [`chebyshev`](super::chebyshev)). The sampled values carry their own quadrature error δ,
+//! which the interpolant passes on amplified at most by the Lebesgue constant
+//! `Λ_n ≤ (2/π) ln(n + 1) + 1` (ATAP Theorem 15.2: 3.66 at n = 64). An interval is accepted
+//! when `tail + Λ_n·δ_max + rounding ≤ tol`, and that sum is each of its texels' error
+//! estimate. Nodes are computed at `tol/4` (their estimates are usually well below what they
+//! were asked for); an interval where `Λ_n·δ` alone exceeds `tol/2` is computed directly.
+//!
+//! **Adaptivity and cost.** An interval whose degree-64 interpolant does not pass is halved
+//! (each half starts again at degree 8). An interval holding no more texels than the nodes
+//! its next step would need is not interpolated: its texels are computed one by one at the
+//! caller's tolerance, exactly as without this module — so a function that is not smooth
+//! (or a line too short to pay) gets the direct values.
+//!
+//! **Determinism.** One line is processed sequentially in a fixed order and every value is
+//! a pure function of its coordinates; lines are independent, so a caller may run them in
+//! parallel without changing a bit.
+
+use super::chebyshev::{clenshaw, lobatto_coefficients};
+
+/// What this module does, for the sidecar's `quadrature.method`.
+pub const METHOD: &str = "interpolated along each row in x = sqrt(mu) (src/integrate/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested), intervals halved where degree 64 does not pass; accepted where |c_(n-1)| + |c_n| + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4; intervals with no more texels than nodes computed texel by texel.";
+
+/// Lowest and highest interpolation degree on one interval.
+pub const MIN_DEG: usize = 8;
+pub const MAX_DEG: usize = 64;
+/// Requested tolerance of the interpolation nodes, as a fraction of the line's tolerance.
+pub const NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
+/// Relative rounding error allowed for the coefficient transform and the evaluation (~10³
+/// floating-point operations of relative error 1.1e-16, rounded up).
+const ROUNDING: f64 = 1e-13;
+/// Halvings after which an interval's texels are computed directly whatever their number.
+const MAX_DEPTH: u32 = 20;
+
+/// Bound on the Lebesgue constant of the degree-n Chebyshev–Lobatto points (ATAP Thm 15.2).
+pub fn lebesgue(n: usize) -> f64 {
+    2.0 / std::f64::consts::PI * ((n + 1) as f64).ln() + 1.0
+}
+
+/// The function at one point: per-channel values and error bounds, and the integrand
+/// evaluations spent.
+#[derive(Clone, Debug)]
+pub struct Sample {
+    pub value: Vec<f64>,
+    pub error: Vec<f64>,
+    pub evals: u64,
+}
+
+/// The function at every point of the line.
+#[derive(Clone, Debug, Default)]
+pub struct LineValues {
+    /// `value[i·nc + c]`: channel c at xs\[i\].
+    pub value: Vec<f64>,
+    /// Error estimates, laid out as `value`.
+    pub error: Vec<f64>,
+    /// Integrand evaluations of every sample.
+    pub evals: u64,
+    /// Interpolation nodes computed, texels computed directly.
+    pub nodes: usize,
+    pub direct: usize,
+}
+
+/// Where the sample test of an accepted degree-n interpolant looks (in t ∈ [−1, 1]): halfway
+/// (in angle) between the two outermost nodes at each end, where a polynomial that misses a
+/// feature near an end swings most, and one interior point that no degree's nodes hit.
+fn sample_points(n: usize) -> [f64; 3] {
+    let e = (std::f64::consts::PI / (2 * n) as f64).cos();
+    [e, -e, 0.137_036]
+}
+
+/// What became of one interval.
+enum Outcome {
+    /// Accepted: per channel, the Chebyshev coefficients and the error estimate.
+    Interpolated(Vec<(Vec<f64>, f64)>),
+    /// Split in two (the halves are on the stack).
+    Halved,
+    /// Its texels are computed one by one.
+    Direct,
+}
+
+/// Lobatto node j of degree n on [a, b]: `t_j = cos(πj/n)`, node 0 at b, node n at a.
+fn node(a: f64, b: f64, j: usize, n: usize) -> f64 {
+    if j == 0 {
+        b
+    } else if j == n {
+        a
+    } else {
+        0.5 * (a + b) + 0.5 * (b - a) * (std::f64::consts::PI * (j as f64 / n as f64)).cos()
+    }
+}
+
+/// A function at the points `xs` (strictly increasing) with `nc` channels, to tolerance
+/// `tol` (see the module docs). `node(x, t)` returns it at x within t (called with
+/// `t = tol/4` at interpolation nodes and at the sample test's points inside `[xs[0], xs[last]]`); `texel(i, t)` returns it
+/// at xs\[i\] (called with `t = tol` where texels are computed directly; a caller may use
+/// its exact texel coordinates there). `breaks` (increasing) cut the line into the first
+/// intervals: where the function varies fast on one side of a point, the other side is not
+/// made to pay for it.
+pub fn line<N, T>(
+    xs: &[f64],
+    breaks: &[f64],
+    nc: usize,
+    tol: f64,
+    mut node_fn: N,
+    mut texel: T,
+) -> LineValues
+where
+    N: FnMut(f64, f64) -> Sample,
+    T: FnMut(usize, f64) -> Sample,
+{
+    let nx = xs.len();
+    let mut out = LineValues {
+        value: vec![0.0; nx * nc],
+        error: vec![0.0; nx * nc],
+        ..Default::default()
+    };
+    if nx == 0 {
+        return out;
+    }
+    let node_tol = tol * NODE_TOL_FRACTION;
+    // (a, b, first texel, end texel, depth), processed left to right
+    // the initial intervals, cut at `breaks`; pushed right to left, processed left to right
+    let mut cuts = vec![(xs[0], 0usize)];
+    for &c in breaks {
+        let k = xs.partition_point(|&x| x < c);
+        if c > cuts[cuts.len() - 1].0 && k < nx {
+            cuts.push((c, k));
+        }
+    }
+    cuts.push((xs[nx - 1], nx));
+    let mut stack: Vec<(f64, f64, usize, usize, u32)> = cuts
+        .windows(2)
+        .rev()
+        .map(|w| (w[0].0, w[1].0, w[0].1, w[1].1, 0))
+        .collect();
+    while let Some((a, b, i0, i1, depth)) = stack.pop() {
+        let texels = i1 - i0;
+        if texels == 0 {
+            continue;
+        }
+        let mut n = MIN_DEG;
+        let mut vals: Vec<Sample> = Vec::new();
+        let outcome = loop {
+            if texels <= n + 1 || depth >= MAX_DEPTH {
+                break Outcome::Direct;
+            }
+            // the degree-n values, reusing the degree-n/2 ones at even indices
+            let old = std::mem::take(&mut vals);
+            vals = (0..=n)
+                .map(|j| {
+                    if !old.is_empty() && j % 2 == 0 {
+                        old[j / 2].clone()
+                    } else {
+                        let s = node_fn(node(a, b, j, n), node_tol);
+                        out.evals += s.evals;
+                        out.nodes += 1;
+                        s
+                    }
+                })
+                .collect();
+            let (mut pass, mut floor_all) = (true, 0.0f64);
+            let mut fit = Vec::with_capacity(nc);
+            for c in 0..nc {
+                let v: Vec<f64> = vals.iter().map(|s| s.value[c]).collect();
+                let delta = vals.iter().map(|s| s.error[c]).fold(0.0, f64::max);
+                let scale = v.iter().map(|x| x.abs()).fold(0.0, f64::max);
+                let co = lobatto_coefficients(&v);
+                let tail = co[n].abs() + co[n - 1].abs();
+                let floor = lebesgue(n) * delta + ROUNDING * scale;
+                let err = tail + floor;
+                pass &= err <= tol;
+                floor_all = if floor.is_finite() {
+                    floor_all.max(floor)
+                } else {
+                    f64::INFINITY
+                };
+                fit.push((co, err));
+            }
+            if pass {
+                // the tail test can be fooled by a function whose coefficients dip before
+                // they decay (or by a feature between the nodes): check the interpolant at
+                // points between nodes before accepting it (the "sample test" of
+                // Aurentz & Trefethen, "Chopping a Chebyshev series", ACM TOMS 43, 2017, §3)
+                let mut ok = true;
+                for t in sample_points(n) {
+                    let x = 0.5 * (a + b) + 0.5 * (b - a) * t;
+                    let s = node_fn(x, node_tol);
+                    out.evals += s.evals;
+                    out.nodes += 1;
+                    for (c, (co, err)) in fit.iter().enumerate() {
+                        // both sides' errors: the interpolant's estimate and the sample's
+                        ok &= (clenshaw(co, t) - s.value[c]).abs() <= err + s.error[c];
+                    }
+                }
+                if ok {
+                    break Outcome::Interpolated(fit);
+                }
+            }
+            if floor_all > 0.5 * tol {
+                // the nodes' own errors use up the budget: refining cannot help
+                break Outcome::Direct;
+            }
+            if n == MAX_DEG || 2 * n + 1 >= texels {
+                // halve the interval instead (both halves start again at MIN_DEG)
+                let m = 0.5 * (a + b);
+                let k = i0 + xs[i0..i1].partition_point(|&x| x < m);
+                if k == i0 || k == i1 {
+                    break Outcome::Direct;
+                }
+                stack.push((m, b, k, i1, depth + 1));
+                stack.push((a, m, i0, k, depth + 1));
+                break Outcome::Halved;
+            }
+            n *= 2;
+        };
+        match outcome {
+            Outcome::Halved => {}
+            Outcome::Interpolated(fit) => {
+                for (i, &x) in xs.iter().enumerate().take(i1).skip(i0) {
+                    let t = if b > a {
+                        ((2.0 * x - a - b) / (b - a)).clamp(-1.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    for (c, (co, err)) in fit.iter().enumerate() {
+                        out.value[i * nc + c] = clenshaw(co, t);
+                        out.error[i * nc + c] = *err;
+                    }
+                }
+            }
+            Outcome::Direct => {
+                for i in i0..i1 {
+                    let s = texel(i, tol);
+                    out.evals += s.evals;
+                    out.direct += 1;
+                    for c in 0..nc {
+                        out.value[i * nc + c] = s.value[c];
+                        out.error[i * nc + c] = s.error[c];
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exact(v: f64) -> Sample {
+        Sample {
+            value: vec![v],
+            error: vec![0.0],
+            evals: 1,
+        }
+    }
+
+    fn pts(n: usize) -> Vec<f64> {
+        (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect()
+    }
+
+    /// An analytic function with a pole at distance 0.02 from the line (forces halving): every
+    /// point must be within its own estimate, and fewer samples than points must be taken.
+    #[test]
+    fn interpolates_within_estimate() {
+        let f = |x: f64| (1.0 + x).ln() / (x + 0.02) + (7.0 * x).sin();
+        let xs = pts(2000);
+        let g = line(
+            &xs,
+            &[],
+            1,
+            1e-9,
+            |x, _| exact(f(x)),
+            |i, _| exact(f(xs[i])),
+        );
+        assert!(g.nodes > 65, "the pole must force halving");
+        assert!(g.evals < 400, "{} samples", g.evals);
+        for (i, &x) in xs.iter().enumerate() {
+            let e = (g.value[i] - f(x)).abs();
+            // values up to ~50: rounding of the evaluation ~1e-14 on top of the estimate
+            assert!(
+                e <= g.error[i] + 1e-13,
+                "x {x}: error {e:e} > estimate {:e}",
+                g.error[i]
+            );
+            assert!(g.error[i] <= 1e-9);
+        }
+    }
+
+    /// A kink never resolves: the texels next to it end up computed directly, exactly.
+    #[test]
+    fn kinks_fall_back_to_direct_values() {
+        let f = |x: f64| (x - 0.37).abs() + x * x;
+        let xs = pts(1000);
+        let g = line(
+            &xs,
+            &[],
+            1,
+            1e-9,
+            |x, _| exact(f(x)),
+            |i, _| exact(f(xs[i])),
+        );
+        assert!(g.direct > 0 && g.direct < 200, "{} direct", g.direct);
+        for (i, &x) in xs.iter().enumerate() {
+            assert!((g.value[i] - f(x)).abs() <= g.error[i] + 1e-15, "x {x}");
+        }
+    }
+
+    /// A break in front of a boundary layer (√(x + 10⁻³) near 0) keeps the smooth side
+    /// cheap: fewer samples than without it, every point still within its estimate, and no
+    /// interval crosses the break (the interpolant's texels on each side come from their own
+    /// side's nodes only).
+    #[test]
+    fn breaks_cut_the_line() {
+        let f = |x: f64| (x + 1e-3).sqrt();
+        let xs = pts(1000);
+        let plain = line(
+            &xs,
+            &[],
+            1,
+            1e-9,
+            |x, _| exact(f(x)),
+            |i, _| exact(f(xs[i])),
+        );
+        let seen = std::cell::RefCell::new(Vec::new());
+        let cut = line(
+            &xs,
+            &[0.02],
+            1,
+            1e-9,
+            |x, _| {
+                seen.borrow_mut().push(x);
+                exact(f(x))
+            },
+            |i, _| exact(f(xs[i])),
+        );
+        assert!(cut.evals < plain.evals, "{} vs {}", cut.evals, plain.evals);
+        assert!(
+            seen.borrow().contains(&0.02),
+            "0.02 must be an interval end"
+        );
+        for (i, &x) in xs.iter().enumerate() {
+            assert!((cut.value[i] - f(x)).abs() <= cut.error[i] + 1e-15, "x {x}");
+        }
+    }
+
+    /// Sample errors are passed on: a node error δ gives estimates ≥ Λ·δ; a line too short
+    /// to pay is computed directly.
+    #[test]
+    fn sample_errors_and_short_lines() {
+        let xs = pts(100);
+        let g = line(
+            &xs,
+            &[],
+            2,
+            1e-6,
+            |x, t| Sample {
+                value: vec![x, x * x],
+                error: vec![t, 0.0],
+                evals: 1,
+            },
+            |_, _| unreachable!("a quadratic is resolved at degree 8"),
+        );
+        assert_eq!(g.direct, 0);
+        for i in 0..xs.len() {
+            assert!(g.error[2 * i] >= lebesgue(MIN_DEG) * 1e-6 * NODE_TOL_FRACTION);
+            assert!(g.error[2 * i + 1] < 1e-12);
+        }
+        let short = pts(9);
+        let g = line(
+            &short,
+            &[],
+            1,
+            1e-6,
+            |_, _| unreachable!(),
+            |i, _| exact(short[i]),
+        );
+        assert_eq!(g.direct, 9);
+    }
+}
