@@ -293,8 +293,9 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     };
     let method = if spec.kind == TableKind::Dfg && spec.cloth {
         format!(
-            "{method}. Cloth channel B, alpha < 1/16: first {}",
-            crate::integrate::sheen_l::METHOD
+            "{method}. Cloth channel B, alpha < 1/16: first {}; 1/16 <= alpha <= 1: first {}",
+            crate::integrate::sheen_l::METHOD,
+            crate::integrate::sheen_wide::METHOD
         )
     } else {
         method

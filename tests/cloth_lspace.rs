@@ -193,3 +193,109 @@ fn lspace_cloth_refuses_what_it_does_not_cover() {
         );
     }
 }
+
+// ---- wide lobes (1/16 ≤ α ≤ 1): src/integrate/sheen_wide.rs ----
+
+use brdfbake::integrate::sheen_wide::{self, charlie_sheen_wide};
+
+/// Wide lobes against the independent reference (valid there: α ≥ 0.01) over μv =
+/// 1/1024 … 1 and α = 1/16 … 1: every point must converge, agree within `REQ` and within its
+/// own estimate plus the reference's (+ rounding, as above), and meet the tolerance. The
+/// breakpoint θl = θv (where h = n makes (sin θh)^{1/α} non-analytic) lies inside the
+/// μl range of every μv < 1, so every point exercises it; μv = 1 puts it at the end of the
+/// range, μv = 0.999 right next to it, and μv = 1/1024 at the horizon layer.
+#[test]
+fn wide_lspace_cloth_matches_reference_and_its_estimate_holds() {
+    let mus = [1.0 / 1024.0, 1.0 / 256.0, 0.03, 0.2, 0.5, 0.8, 0.999, 1.0];
+    let alphas = [1.0 / 16.0, 0.1, 0.25, 0.5, 0.75, 1.0];
+    let pts: Vec<(f64, f64)> = mus.iter().flat_map(|&m| alphas.map(|a| (m, a))).collect();
+    let failures: Vec<String> = pts
+        .par_iter()
+        .filter_map(|&(mu, alpha)| {
+            let m = RefModel::new(NdfKind::Charlie, alpha, Masking::Ashikhmin);
+            let e = match charlie_sheen_wide(mu, alpha, LIB_TOL) {
+                Ok(e) => e,
+                Err(n) => return Some(format!("mu={mu} alpha={alpha}: gave up after {n} evaluations")),
+            };
+            let r = reference::albedo(&m, mu, REF_TOL);
+            let d = (e.value[0] - r.value[0]).abs();
+            let bad = d > REQ * r.value[0].abs().max(1.0)
+                || d > e.error[0] + r.error + round(r.value[0])
+                || e.error[0] > LIB_TOL
+                || e.evals > sheen_wide::EVAL_CAP + 2 * 65;
+            bad.then(|| {
+                format!(
+                    "mu={mu} alpha={alpha}: wide l-space {} (est {:e}, {} evals) reference {} (est {:e}) diff {d:e}",
+                    e.value[0], e.error[0], e.evals, r.value[0], r.error
+                )
+            })
+        })
+        .collect();
+    assert!(
+        failures.is_empty(),
+        "{} failure(s):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// Arguments outside the wide path's range are refused without evaluations.
+#[test]
+fn wide_lspace_cloth_refuses_what_it_does_not_cover() {
+    for (mu, alpha) in [
+        (0.0, 0.5),
+        (-0.5, 0.5),
+        (1.5, 0.5),
+        (f64::NAN, 0.5),
+        (0.5, 0.05),
+        (0.5, 1.5),
+        (0.5, f64::NAN),
+    ] {
+        assert_eq!(
+            charlie_sheen_wide(mu, alpha, LIB_TOL).unwrap_err(),
+            0,
+            "{mu} {alpha}"
+        );
+    }
+    assert_eq!(charlie_sheen_wide(0.5, 0.5, 0.0).unwrap_err(), 0);
+}
+
+/// The wide path is the one the wide rows of a 128² filament-dfg table use (rows 32–127:
+/// μ = (i + ½)/128, α = ((j + ½)/128)² ≥ 1/16), column by column with the shared node data:
+/// it must converge at every texel within the tolerance, with at most 1,450 evaluations per
+/// texel on average (the half-vector kernel spends 1,761 there), and give the same bits as
+/// the same texel computed alone (every 9th column and row: the value is a pure function
+/// of (μ, α, tol), whatever the cache held before).
+#[test]
+fn wide_lspace_cloth_covers_the_wide_rows_and_sharing_changes_no_bit() {
+    let n = 128;
+    let (mut total, mut evals) = (0u64, 0u64);
+    for i in 0..n {
+        let mu = (i as f64 + 0.5) / n as f64;
+        let mut cache = sheen_wide::WideCache::default();
+        for j in 32..n {
+            let r = (j as f64 + 0.5) / n as f64;
+            let alpha = r * r;
+            let e = sheen_wide::charlie_sheen_wide_shared(mu, alpha, LIB_TOL, &mut cache)
+                .unwrap_or_else(|n| panic!("mu={mu} alpha={alpha}: gave up after {n} evaluations"));
+            assert!(e.error[0] <= LIB_TOL && e.value[0].is_finite() && e.value[0] > 0.0);
+            total += 1;
+            evals += e.evals;
+            if i % 9 == 0 && j % 9 == 0 {
+                let alone = charlie_sheen_wide(mu, alpha, LIB_TOL).expect("converges alone");
+                assert_eq!(
+                    alone.value[0].to_bits(),
+                    e.value[0].to_bits(),
+                    "mu={mu} alpha={alpha}"
+                );
+                assert_eq!(alone.error[0].to_bits(), e.error[0].to_bits());
+                assert_eq!(alone.evals, e.evals);
+            }
+        }
+    }
+    assert!(
+        evals <= 1450 * total,
+        "{} evaluations per texel",
+        evals as f64 / total as f64
+    );
+}

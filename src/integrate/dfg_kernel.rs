@@ -480,6 +480,8 @@ pub struct SheenCache {
     scale: Vec<f64>,
     ln_sin2: Vec<f64>,
     rest: Vec<f64>,
+    /// the light-direction path's data for wide lobes ([`super::sheen_wide`])
+    wide: super::sheen_wide::WideCache,
 }
 
 impl Default for SheenCache {
@@ -489,11 +491,18 @@ impl Default for SheenCache {
             scale: vec![0.0; NMAX],
             ln_sin2: vec![0.0; NMAX * NMAX],
             rest: vec![0.0; NMAX * NMAX],
+            wide: Default::default(),
         }
     }
 }
 
 impl SheenCache {
+    /// The column's data for [`super::sheen_wide::charlie_sheen_wide_shared`] (filled on
+    /// first use; the same results with or without it).
+    pub fn wide(&mut self) -> &mut super::sheen_wide::WideCache {
+        &mut self.wide
+    }
+
     /// Makes sure φ node i has every inner node of stride `stride`.
     fn ensure(&mut self, col: &Column, i: usize, stride: usize) {
         let have = self.level_stride[i];

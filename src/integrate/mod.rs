@@ -13,6 +13,7 @@ pub mod hemisphere;
 pub mod interp1d;
 pub mod monte_carlo;
 pub mod sheen_l;
+pub mod sheen_wide;
 pub mod tensor;
 pub mod vgroove;
 

@@ -183,18 +183,33 @@ impl Ctx {
     }
 }
 
-/// The cloth channel at one texel: narrow lobes (α < [`sheen_l::MAX_ALPHA`]) in
-/// light-direction coordinates ([`sheen_l`]) first, then (wider lobes, or where that does
-/// not reach `tol`) the half-vector kernel with the column's shared node data, then the
-/// generic path; the evaluations of abandoned attempts are counted. A pure function of
-/// (μ, α, tol): the same bits whether the texel is computed alone or in its column.
+/// The cloth channel at one texel: in light-direction coordinates first — narrow lobes
+/// (α < [`sheen_l::MAX_ALPHA`]) by [`sheen_l`], wide ones (up to α = 1) by
+/// [`sheen_wide`](crate::integrate::sheen_wide)
+/// with the column's shared node data — then, where that does not reach `tol`, the
+/// half-vector kernel with the column's shared node data, then the generic path; the
+/// evaluations of abandoned attempts are counted. A pure function of (μ, α, tol): the same
+/// bits whether the texel is computed alone or in its column.
 fn cloth_texel(col: &Column, cache: &RefCell<SheenCache>, alpha: f64, tol: f64) -> (f64, f64, u64) {
+    use crate::integrate::sheen_wide;
     let mut spent = 0;
-    if alpha < sheen_l::MAX_ALPHA {
-        match sheen_l::charlie_sheen_l(col.mu(), alpha, tol) {
-            Ok(e) => return (e.value[0], e.error[0], e.evals),
-            Err(n) => spent = n,
-        }
+    let first = if alpha < sheen_l::MAX_ALPHA {
+        Some(sheen_l::charlie_sheen_l(col.mu(), alpha, tol))
+    } else if alpha <= sheen_wide::MAX_ALPHA {
+        let mut c = cache.borrow_mut();
+        Some(sheen_wide::charlie_sheen_wide_shared(
+            col.mu(),
+            alpha,
+            tol,
+            c.wide(),
+        ))
+    } else {
+        None
+    };
+    match first {
+        Some(Ok(e)) => return (e.value[0], e.error[0], e.evals),
+        Some(Err(n)) => spent = n,
+        None => {}
     }
     match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
         Ok(e) => (e.value[0], e.error[0], e.evals + spent),
