@@ -102,14 +102,16 @@ pub fn bake_until(
     // The texel results in blocks: one block per column (axis-0 index) for dfg tables, which
     // are computed a column (one view μ, all roughnesses) per task so that the column's view
     // data is built once (dfg::column_fn); one block in texel order otherwise.
-    let interpolated = if spec.kind == TableKind::Dfg {
+    // (GGX dfg tables go row by row instead, interpolated along rows: dfg::by_rows, whose
+    // dense result needs no per-texel allocation)
+    let dense = if spec.kind == TableKind::Dfg {
         dfg::by_rows(spec, &out_of_time)
     } else {
         None
     };
-    let by_column = spec.kind == TableKind::Dfg && interpolated.is_none();
-    let blocks: Vec<Vec<TexelResult>> = if let Some(t) = interpolated {
-        vec![t]
+    let by_column = spec.kind == TableKind::Dfg && dense.is_none();
+    let blocks: Vec<Vec<TexelResult>> = if dense.is_some() {
+        Vec::new()
     } else if by_column {
         let column = dfg::column_fn(spec);
         (0..dims[0])
@@ -158,21 +160,27 @@ pub fn bake_until(
         });
     }
     // texel i (axis 0 fastest)
-    let result = |i: usize| -> &TexelResult {
-        if by_column {
+    let nc = channels.len();
+    // texel i's values, error estimates and evaluations
+    let result = |i: usize| -> (&[f64], &[f64], u64) {
+        if let Some(d) = &dense {
+            let k = i * d.channels;
+            return (&d.value[k..k + nc], &d.error[k..k + nc], 0);
+        }
+        let r = if by_column {
             &blocks[i % dims[0]][i / dims[0]]
         } else {
             &blocks[0][i]
-        }
+        };
+        (&r.value, &r.error, r.evals)
     };
-    let nc = channels.len();
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
-    let mut evals = 0u64;
+    let mut evals = dense.as_ref().map_or(0, |d| d.evals);
     for i in 0..n {
-        let r = result(i);
+        let (value, error, texel_evals) = result(i);
         for c in 0..nc {
-            let v = r.value[c];
+            let v = value[c];
             if !v.is_finite() || !(v as f32).is_finite() {
                 return Err(BakeError::NonFinite {
                     name: spec.name.clone(),
@@ -186,9 +194,9 @@ pub fn bake_until(
                 });
             }
             data.push(v as f32);
-            err[c] = err[c].max(r.error[c]);
+            err[c] = err[c].max(error[c]);
         }
-        evals += r.evals;
+        evals += texel_evals;
     }
     Ok(Lut {
         axes: spec.axes.clone(),
