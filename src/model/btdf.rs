@@ -50,6 +50,13 @@ impl RoughDielectric {
     /// corresponding direction does not exist or lies on the wrong side.
     #[inline]
     pub fn integrands(&self, n_dot_v: f64, m: &MicroNormal) -> [f64; 2] {
+        self.integrands_with(n_dot_v, self.ndf.g1(n_dot_v), m)
+    }
+
+    /// [`Self::integrands`] with the view's `G1(n·v)` = `g1v` given (it is the same for every
+    /// micro-normal of one view: a caller integrating over h computes it once).
+    #[inline]
+    pub fn integrands_with(&self, n_dot_v: f64, g1v: f64, m: &MicroNormal) -> [f64; 2] {
         let c = m.v_dot_h;
         if c <= 0.0 || n_dot_v <= 0.0 {
             return [0.0, 0.0];
@@ -58,7 +65,6 @@ impl RoughDielectric {
         if d == 0.0 {
             return [0.0, 0.0];
         }
-        let g1v = self.ndf.g1(n_dot_v);
         let w = d * g1v * c / n_dot_v;
         let f = dielectric(c, self.eta);
         let n_dot_lr = 2.0 * c * m.n_dot_h - n_dot_v;

@@ -236,6 +236,7 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
     let inner_err = std::cell::Cell::new(0.0f64);
     let inner_evals = std::cell::Cell::new(0u64);
     let to_u = |t: f64| (t / alpha).asinh().min(U_CAP);
+    let g1v = m.ndf.g1(mu);
     let phi_integrand = |phi: f64| -> [f64; 2] {
         let (sp, cp) = phi.sin_cos();
         let u_end = if cp < 0.0 && sin_v > 0.0 {
@@ -269,7 +270,12 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
         }
         let e = panels(
             |u: f64| {
-                let t = alpha * u.sinh();
+                // sinh u and cosh u from one exp_m1 (u ≥ 0; no cancellation: sinh u =
+                // (e + e/(1 + e))/2 with e = eᵘ − 1)
+                let e = u.exp_m1();
+                let inv = 1.0 / (1.0 + e);
+                let (sinh_u, cosh_u) = (0.5 * (e + e * inv), 0.5 * (1.0 + e + inv));
+                let t = alpha * sinh_u;
                 let c2 = 1.0 / (1.0 + t * t);
                 let cos_h = c2.sqrt();
                 let sin_h = t * cos_h;
@@ -279,8 +285,8 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
                     v_dot_h: sin_v * sin_h * cp + mu * cos_h,
                 };
                 // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh
-                let jac = sin_h * alpha * u.cosh() * c2;
-                let [r, tr] = m.integrands(mu, &h);
+                let jac = sin_h * alpha * cosh_u * c2;
+                let [r, tr] = m.integrands_with(mu, g1v, &h);
                 [r * jac, tr * jac]
             },
             breaks,
