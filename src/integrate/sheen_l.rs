@@ -328,22 +328,27 @@ impl Inner {
     }
 }
 
+/// The cloth albedo at normal view (μv = 1), where h bisects n and l, sin²θh = (1 − μl)/2
+/// and `(π/2)·norm·∫₀¹ μl ((1 − μl)/2)^k dμl = (π/2)·norm·2^{−k}/((k + 1)(k + 2))` (a Beta
+/// integral, B(2, k + 1)): the closed form the light-coordinate paths are tested against.
+#[cfg(test)]
+pub(crate) fn normal_view_albedo(alpha: f64) -> f64 {
+    let k = 0.5 / alpha;
+    let norm = (2.0 + 1.0 / alpha) / (2.0 * PI);
+    0.5 * PI * norm * (-k * std::f64::consts::LN_2).exp() / ((k + 1.0) * (k + 2.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// At normal view (μv = 1) h bisects n and l, so sin²θh = (1 − μl)/2 and the albedo has
-    /// a closed form: `(π/2)·norm·∫₀¹ μl ((1 − μl)/2)^k dμl = (π/2)·norm·2^{−k}/((k + 1)(k + 2))`
-    /// (a Beta integral, B(2, k + 1)). The path must agree within its own estimate plus
-    /// rounding (1e-13 relative: a few hundred terms of the value's size), and its estimate
-    /// must meet the tolerance.
+    /// At normal view the albedo has a closed form ([`normal_view_albedo`]). The path must
+    /// agree within its own estimate plus rounding (1e-13 relative: a few hundred terms of the
+    /// value's size), and its estimate must meet the tolerance.
     #[test]
     fn normal_view_matches_closed_form() {
         for &alpha in &[0.06, 0.03, 0.01, 3e-3, 1e-3, 1e-4, 1e-6] {
-            let k = 0.5 / alpha;
-            let norm = (2.0 + 1.0 / alpha) / (2.0 * PI);
-            let exact =
-                0.5 * PI * norm * (-k * std::f64::consts::LN_2).exp() / ((k + 1.0) * (k + 2.0));
+            let exact = normal_view_albedo(alpha);
             for tol in [1e-7, 1e-10] {
                 let e = charlie_sheen_l(1.0, alpha, tol).expect("converges at normal view");
                 let d = (e.value[0] - exact).abs();

@@ -576,16 +576,14 @@ fn sinh_node(a: f64, s: f64, ds_dx: f64) -> (f64, f64) {
 mod tests {
     use super::*;
 
-    /// At normal view (μv = 1) sin²θh = (1 − μl)/2, so the albedo is the Beta integral
-    /// `(π/2)·norm·2^{−k}/((k + 1)(k + 2))` (as in `sheen_l`); the path must agree within its
-    /// estimate plus rounding (1e-13 relative) and meet the tolerance.
+    /// At normal view the albedo is a Beta integral
+    /// ([`sheen_l::normal_view_albedo`](crate::integrate::sheen_l::normal_view_albedo)); the
+    /// path must agree within its estimate plus rounding (1e-13 relative) and meet the
+    /// tolerance.
     #[test]
     fn normal_view_matches_closed_form() {
         for &alpha in &[MIN_ALPHA, 0.1, 0.25, 0.5, 0.75, 1.0] {
-            let k = 0.5 / alpha;
-            let norm = (2.0 + 1.0 / alpha) / (2.0 * PI);
-            let exact =
-                0.5 * PI * norm * (-k * std::f64::consts::LN_2).exp() / ((k + 1.0) * (k + 2.0));
+            let exact = crate::integrate::sheen_l::normal_view_albedo(alpha);
             for tol in [1e-7, 1e-10] {
                 let e = charlie_sheen_wide(1.0, alpha, tol).expect("converges at normal view");
                 let d = (e.value[0] - exact).abs();
