@@ -103,10 +103,10 @@ fn node(a: f64, b: f64, j: usize, n: usize) -> f64 {
 }
 
 /// A function at the points `xs` (strictly increasing) with `nc` channels, to tolerance
-/// `tol` (see the module docs). `node(x, t)` returns it at x within t (called with
-/// `t = tol/4` at interpolation nodes and at the sample test's points inside `[xs[0], xs[last]]`); `texel(i, t)` returns it
-/// at xs\[i\] (called with `t = tol` where texels are computed directly; a caller may use
-/// its exact texel coordinates there). `breaks` (increasing) cut the line into the first
+/// `tol` (see the module docs). `node_fn(x, t)` returns it at x within t (called with
+/// `t = tol/4` at interpolation nodes and sample-test points, all inside
+/// `[xs[0], xs[last]]`); `texel(i, t)` returns it at xs\[i\] (called with `t = tol` where
+/// texels are computed directly; a caller may use its exact texel coordinates there). `breaks` (increasing) cut the line into the first
 /// intervals: where the function varies fast on one side of a point, the other side is not
 /// made to pay for it.
 pub fn line<N, T>(
@@ -131,8 +131,8 @@ where
         return out;
     }
     let node_tol = tol * NODE_TOL_FRACTION;
-    // (a, b, first texel, end texel, depth), processed left to right
-    // the initial intervals, cut at `breaks`; pushed right to left, processed left to right
+    // intervals (a, b, first texel, end texel, depth) on a stack, processed left to right;
+    // the initial ones are the line cut at `breaks`
     let mut cuts = vec![(xs[0], 0usize)];
     for &c in breaks {
         let k = xs.partition_point(|&x| x < c);
