@@ -235,9 +235,7 @@ fn panel(
         }
         q[lev] = s;
         if lev >= 4 {
-            let d = |x: f64, y: f64| (x - y).abs();
-            let e_out = d(q[lev], q[lev - 1])
-                .max(d(q[lev - 1], q[lev - 2]).powi(2) / q[lev].abs().max(tol));
+            let e_out = super::tensor::nested_error(q[lev], q[lev - 1], q[lev - 2], tol);
             let e = e_out + se;
             if !e.is_finite() || !s.is_finite() {
                 return Err(*evals);

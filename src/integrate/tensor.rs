@@ -446,10 +446,8 @@ pub(crate) fn refine<const N: usize, S>(
         let mut err = [0.0; N];
         let (mut ep, mut eu) = (0.0f64, 0.0f64);
         for c in 0..N {
-            let sc_c = q[c].abs().max(tol);
-            let d = |x: f64, y: f64| (x - y).abs();
-            let a = d(q[c], qp1[c]).max(d(qp1[c], qp2[c]).powi(2) / sc_c);
-            let b = d(q[c], qu1[c]).max(d(qu1[c], qu2[c]).powi(2) / sc_c);
+            let a = nested_error(q[c], qp1[c], qp2[c], tol);
+            let b = nested_error(q[c], qu1[c], qu2[c], tol);
             ep = ep.max(a);
             eu = eu.max(b);
             err[c] = a + b;
@@ -520,6 +518,17 @@ pub fn integrate_over_l_smooth<const N: usize, F: Fn(&Node) -> [f64; N]>(
             e
         }
     }
+}
+
+/// The error estimate of nested rules' level k from its results `q` (level k), `q1` (k − 1)
+/// and `q2` (k − 2): `max(|q − q1|, |q1 − q2|²/max(|q|, tol))` — the last difference, but
+/// never below what the difference before predicts under quadratic convergence (see
+/// the comment in `run`; QUADPACK, Piessens et al. 1983, §2.2.1). Shared by the nested
+/// Clenshaw–Curtis rules of this module, [`sheen_l`](super::sheen_l) and
+/// [`sheen_wide`](super::sheen_wide).
+pub(crate) fn nested_error(q: f64, q1: f64, q2: f64, tol: f64) -> f64 {
+    let d = |x: f64, y: f64| (x - y).abs();
+    d(q, q1).max(d(q1, q2).powi(2) / q.abs().max(tol))
 }
 
 #[cfg(test)]
