@@ -292,8 +292,13 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         method
     };
     let method = if spec.kind == TableKind::Dfg && spec.cloth {
+        let interpolated = if crate::table::dfg::rows_interpolated(spec) {
+            "interpolated by the same rule: narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) (texels with mu < 0.04 computed directly; nodes at tolerance/8), wide lobes (1/16 <= alpha <= 1) along each column in x = sqrt(alpha) (nodes at tolerance/4); each node or direct texel: "
+        } else {
+            ""
+        };
         format!(
-            "{method}. Cloth channel B, alpha < 1/16: first {}; 1/16 <= alpha <= 1: first {}",
+            "{method}. Cloth channel B {interpolated}alpha < 1/16: first {}; 1/16 <= alpha <= 1: first {}",
             crate::integrate::sheen_l::METHOD,
             crate::integrate::sheen_wide::METHOD
         )

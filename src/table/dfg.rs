@@ -10,8 +10,9 @@
 //! **How a table is baked.** GGX tables with Smith masking go row by row ([`by_rows`]): along
 //! a row (one roughness) the split-sum pair is an analytic function of √μ, interpolated from
 //! values at Chebyshev nodes ([`interp1d`]) with the interpolation's error in each texel's
-//! estimate; the cloth channel goes column by column, where its kernel shares node data
-//! between roughnesses. Other models go column by column ([`column_fn`]), texel by texel.
+//! estimate. The cloth channel is interpolated too: narrow lobes along rows in √μ, wide
+//! ones along columns in √α, where their kernel shares node data between roughnesses.
+//! Other models go column by column ([`column_fn`]), texel by texel.
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
@@ -277,8 +278,9 @@ fn as_sample(r: TexelResult) -> interp1d::Sample {
 }
 
 /// The whole table row by row, each row's split-sum pair interpolated in `x = √μ` from
-/// values at Chebyshev nodes ([`interp1d`]); the cloth channel column by column as
-/// [`column_fn`] does. `None` where [`rows_interpolated`] says no. Texels a row does not resolve
+/// values at Chebyshev nodes ([`interp1d`]); the cloth channel of narrow lobes row by row
+/// ([`cloth_row`]), of wide ones column by column ([`cloth_column`]), both interpolated the
+/// same way. `None` where [`rows_interpolated`] says no. Texels a row does not resolve
 /// are computed as [`texel_fn`] computes them. Each interpolated texel's error estimate is
 /// the interpolation's (truncation, plus the nodes' quadrature errors times the Lebesgue
 /// constant). Results in texel order (μ fastest), without per-texel allocations (a 512²
@@ -322,27 +324,27 @@ pub(crate) fn by_rows(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Opt
             )
         })
         .collect();
-    // the cloth channel column by column, as `column_fn` computes it (its node data is
-    // shared along a column; interpolated along rows, the nodes could not share it)
-    let cloth: Option<Vec<Vec<(f64, f64, u64)>>> = ctx.cloth.then(|| {
+    // the cloth channel: narrow lobes along rows, wide ones along columns (`cloth_rows`,
+    // `cloth_column`)
+    let narrow = |j: usize| ay.alpha(j).expect("roughness axis") < sheen_l::MAX_ALPHA;
+    let cloth_rows: Vec<Option<interp1d::LineValues>> = if ctx.cloth {
+        (0..ny)
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|j| narrow(j).then(|| cloth_row(&ctx, &xs, j, stop)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let cloth_cols: Vec<interp1d::LineValues> = if ctx.cloth {
         (0..nx)
             .into_par_iter()
             .with_min_len(1)
-            .map(|i| {
-                let col = Column::new(ax.coord(i));
-                let cache = RefCell::new(SheenCache::default());
-                (0..ny)
-                    .map(|j| {
-                        if stop() {
-                            return (0.0, 0.0, 0);
-                        }
-                        let alpha = ay.alpha(j).expect("roughness axis");
-                        cloth_texel(&col, &cache, alpha, ctx.tol)
-                    })
-                    .collect()
-            })
+            .map(|i| cloth_column(&ctx, i, stop))
             .collect()
-    });
+    } else {
+        Vec::new()
+    };
     let nc = if ctx.cloth { 3 } else { 2 };
     let mut out = Dense {
         channels: nc,
@@ -350,20 +352,155 @@ pub(crate) fn by_rows(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Opt
         error: Vec::with_capacity(nx * ny * nc),
         evals: 0,
     };
+    out.evals += cloth_rows.iter().flatten().map(|r| r.evals).sum::<u64>();
+    out.evals += cloth_cols.iter().map(|c| c.evals).sum::<u64>();
+    let cloth_at = |i: usize, j: usize| match &cloth_rows[j] {
+        Some(r) => (r.value[i], r.error[i]),
+        None => (cloth_cols[i].value[j], cloth_cols[i].error[j]),
+    };
     for (j, row) in rows.iter().enumerate() {
         out.evals += row.evals;
         for i in 0..nx {
             out.value.extend_from_slice(&row.value[2 * i..2 * i + 2]);
             out.error.extend_from_slice(&row.error[2 * i..2 * i + 2]);
-            if let Some(c) = &cloth {
-                let (v, e, n) = c[i][j];
+            if ctx.cloth {
+                let (v, e) = cloth_at(i, j);
                 out.value.push(v);
                 out.error.push(e);
-                out.evals += n;
             }
         }
     }
     Some(out)
+}
+
+/// Below which, in x = √μ, [`cloth_row`] computes a narrow lobe's texels directly: μ = 0.04.
+/// There the cloth albedo of a narrow lobe changes on the scale of μ and its quadratures
+/// are the costliest of the row (the light-direction kernel often gives up there, and at
+/// the nodes' tighter tolerance the half-vector kernel too, leaving the generic path: at
+/// 512², interpolating down to the first texel spent 46 M of 138 M evaluations on such
+/// nodes). Measured on filament-dfg's narrow rows at 128² (cut as an interpolation break):
+/// x = 0.1, 0.2, 0.25, 0.3 gave 937 (most rows direct: their nodes' estimates near x = 0.13
+/// use up the budget), 467, 460 and 838 evaluations per texel (778 texel by texel).
+const CLOTH_GRAZING_BREAK: f64 = 0.2;
+
+/// The interpolation nodes of the cloth channel are computed at tol/8, not interp1d's tol/4:
+/// the cloth kernels' estimates come close to what they are asked for, and at tol/4 the
+/// nodes' own error times the Lebesgue constant (2.4 at degree 8) would exceed the half of
+/// the tolerance beyond which an interval is computed directly — most narrow rows did.
+const CLOTH_NODE_TOL_FRACTION: f64 = 1.0 / 8.0;
+
+fn cloth_sample((v, e, n): (f64, f64, u64)) -> interp1d::Sample {
+    interp1d::Sample {
+        value: vec![v],
+        error: vec![e],
+        evals: n,
+    }
+}
+
+/// The cloth channel of row j (a narrow lobe, α < [`sheen_l::MAX_ALPHA`]) interpolated in
+/// x = √μ ([`interp1d`]) from [`cloth_texel`] values: narrow lobes go through
+/// [`sheen_l`], which shares nothing along a column, so a row loses nothing by not being
+/// computed column by column. Texels the row does not resolve are computed as
+/// [`column_fn`] computes them.
+fn cloth_row(
+    ctx: &Ctx,
+    xs: &[f64],
+    j: usize,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> interp1d::LineValues {
+    let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
+    let at = |mu: f64, t: f64| {
+        if stop() {
+            return cloth_sample((0.0, 0.0, 0));
+        }
+        let cache = RefCell::new(SheenCache::default());
+        cloth_sample(cloth_texel(&Column::new(mu), &cache, alpha, t))
+    };
+    // the texels below the break directly, the rest interpolated
+    let k = xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK);
+    let mut out = interp1d::line_with_node_tol(
+        &xs[k..],
+        &[],
+        1,
+        ctx.tol,
+        ctx.tol * CLOTH_NODE_TOL_FRACTION,
+        |x, t| at(x * x, t),
+        |i, t| at(ctx.axes[0].coord(k + i), t),
+    );
+    let mut value = Vec::with_capacity(xs.len());
+    let mut error = Vec::with_capacity(xs.len());
+    for i in 0..k {
+        let s = at(ctx.axes[0].coord(i), ctx.tol);
+        value.push(s.value[0]);
+        error.push(s.error[0]);
+        out.evals += s.evals;
+        out.direct += 1;
+    }
+    value.extend_from_slice(&out.value);
+    error.extend_from_slice(&out.error);
+    out.value = value;
+    out.error = error;
+    out
+}
+
+/// The cloth channel of column i (one view μ): the wide lobes ([`sheen_wide`]'s range,
+/// 1/16 ≤ α ≤ 1), if their α increases along the column, interpolated in x = √α
+/// ([`interp1d`]; analytic there: Charlie's `sin^{1/α}` is analytic in 1/α) from
+/// [`cloth_texel`] values, whose kernel shares its node data along the column
+/// ([`SheenCache`]) at any α; every other texel computed as [`column_fn`] computes it (the
+/// narrow lobes' values are left 0 here: [`cloth_row`] computes them).
+///
+/// [`sheen_wide`]: crate::integrate::sheen_wide
+fn cloth_column(ctx: &Ctx, i: usize, stop: &(dyn Fn() -> bool + Sync)) -> interp1d::LineValues {
+    use crate::integrate::sheen_wide;
+    let ay = &ctx.axes[1];
+    let ny = ay.size;
+    let col = Column::new(ctx.axes[0].coord(i));
+    let cache = RefCell::new(SheenCache::default());
+    let at = |alpha: f64, t: f64| {
+        if stop() {
+            return (0.0, 0.0, 0);
+        }
+        cloth_texel(&col, &cache, alpha, t)
+    };
+    let alphas: Vec<f64> = (0..ny)
+        .map(|j| ay.alpha(j).expect("roughness axis"))
+        .collect();
+    let wide = |a: f64| (sheen_l::MAX_ALPHA..=sheen_wide::MAX_ALPHA).contains(&a);
+    let mut out = interp1d::LineValues {
+        value: vec![0.0; ny],
+        error: vec![0.0; ny],
+        ..Default::default()
+    };
+    // the wide run: contiguous, α strictly increasing
+    let j0 = alphas.iter().position(|&a| wide(a)).unwrap_or(ny);
+    let j1 = j0 + alphas[j0..].iter().take_while(|&&a| wide(a)).count();
+    let increasing = alphas[j0..j1].windows(2).all(|w| w[1] > w[0]);
+    let (j0, j1) = if increasing { (j0, j1) } else { (0, 0) };
+    if j1 > j0 {
+        let xs: Vec<f64> = alphas[j0..j1].iter().map(|a| a.sqrt()).collect();
+        let run = interp1d::line(
+            &xs,
+            &[],
+            1,
+            ctx.tol,
+            |x, t| cloth_sample(at(x * x, t)),
+            |k, t| cloth_sample(at(alphas[j0 + k], t)),
+        );
+        out.value[j0..j1].copy_from_slice(&run.value);
+        out.error[j0..j1].copy_from_slice(&run.error);
+        out.evals += run.evals;
+    }
+    for (j, &a) in alphas.iter().enumerate() {
+        if (j0..j1).contains(&j) || a < sheen_l::MAX_ALPHA {
+            continue;
+        }
+        let (v, e, n) = at(a, ctx.tol);
+        out.value[j] = v;
+        out.error[j] = e;
+        out.evals += n;
+    }
+    out
 }
 
 /// A whole table's values without per-texel allocations: channel c of texel t (axis 0
@@ -455,11 +592,11 @@ mod tests {
         );
     }
 
-    /// With cloth, the cloth channel is the column path's, bit for bit, and the split-sum
-    /// channels agree with it within the two estimates; a table whose rows are too short to
-    /// pay is computed texel by texel, bit for bit as by columns.
+    /// Every channel agrees with the column path (texel by texel) within the two estimates;
+    /// a table whose rows and columns are too short to pay is computed texel by texel, bit
+    /// for bit as by columns.
     #[test]
-    fn cloth_channel_and_short_rows_are_the_column_values() {
+    fn short_lines_are_the_column_values() {
         for (nx, short) in [(40, false), (8, true)] {
             let s = spec(nx, [0.1, 0.9], 3, true, 1e-7);
             let rows = by_rows(&s, &|| false).expect("interpolated");
@@ -468,8 +605,7 @@ mod tests {
                 let col = column(i);
                 for (j, c) in col.iter().enumerate() {
                     let t = 3 * (j * nx + i);
-                    assert_eq!(rows.value[t + 2].to_bits(), c.value[2].to_bits());
-                    for k in 0..2 {
+                    for k in 0..3 {
                         let (v, e) = (rows.value[t + k], rows.error[t + k]);
                         if short {
                             assert_eq!(v.to_bits(), c.value[k].to_bits());
@@ -478,6 +614,47 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    /// The interpolated cloth channel — narrow lobes along rows in √μ, wide ones along
+    /// columns in √α — lies within its own estimate of the cloth albedo computed texel by
+    /// texel at a 100× tighter tolerance (whose estimate is added), on three narrow rows
+    /// (α = 0.0025 … 0.04, 150 texels each) and three columns (60 wide texels each, α = 1/16
+    /// … 1), and every estimate is within the table's tolerance. Both lines must really be
+    /// interpolated (fewer quadratures than texels).
+    #[test]
+    fn interpolated_cloth_matches_texel_values() {
+        let tol = 1e-7;
+        let s = spec(150, [0.05, 1.0], 77, true, tol);
+        let ctx = Ctx::new(&s);
+        let check = |i: usize, j: usize, v: f64, e: f64| {
+            let alpha = ctx.axes[1].alpha(j).unwrap();
+            let col = Column::new(ctx.axes[0].coord(i));
+            let cache = RefCell::new(SheenCache::default());
+            let (r, re, _) = cloth_texel(&col, &cache, alpha, tol * 1e-2);
+            assert!(
+                (v - r).abs() <= e + re,
+                "texel ({i}, {j}), alpha {alpha}: {v} vs {r} (estimates {e:e} + {re:e})"
+            );
+            assert!(e <= tol, "estimate {e:e} over the tolerance");
+        };
+        let xs: Vec<f64> = (0..150).map(|i| ctx.axes[0].coord(i).sqrt()).collect();
+        for j in [0, 6, 12] {
+            assert!(ctx.axes[1].alpha(j).unwrap() < sheen_l::MAX_ALPHA);
+            let row = cloth_row(&ctx, &xs, j, &|| false);
+            assert!(row.nodes + row.direct < 150, "row {j} not interpolated");
+            for i in 0..150 {
+                check(i, j, row.value[i], row.error[i]);
+            }
+        }
+        for i in [0, 70, 149] {
+            let c = cloth_column(&ctx, i, &|| false);
+            assert!(c.nodes + c.direct < 60, "column {i} not interpolated");
+            for j in 17..77 {
+                assert!(ctx.axes[1].alpha(j).unwrap() >= sheen_l::MAX_ALPHA);
+                check(i, j, c.value[j], c.error[j]);
             }
         }
     }
