@@ -25,7 +25,7 @@ use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
@@ -112,19 +112,64 @@ pub fn split_sum_column(
     mu: f64,
     tol: f64,
 ) -> ([f64; 2], [f64; 2], u64) {
+    split_sum_lazy(spec, mu, tol, || col)
+}
+
+/// [`split_sum_column`] with the view setup asked for only where the polar kernel gives up.
+fn split_sum_lazy<'a>(
+    spec: &Specular,
+    mu: f64,
+    tol: f64,
+    col: impl FnOnce() -> &'a Column,
+) -> ([f64; 2], [f64; 2], u64) {
     let mut spent = 0;
     if let Some(smith) = kernel_smith(spec) {
         match ggx_polar::ggx_split_sum(mu, spec.ndf.alpha(), smith, tol) {
             Ok(e) => return (e.value, e.error, e.evals),
             Err(n) => spent = n,
         }
-        match dfg_kernel::ggx_split_sum(col, spec.ndf.alpha(), smith, tol) {
+        match dfg_kernel::ggx_split_sum(col(), spec.ndf.alpha(), smith, tol) {
             Ok(e) => return (e.value, e.error, e.evals + spent),
             Err(n) => spent += n,
         }
     }
     let (v, e, n) = split_sum(spec, mu, tol);
     (v, e, n + spent)
+}
+
+/// One view's data for the kernels that share it along a table column — the φ-node setup
+/// ([`Column`]) and the cloth kernels' node data ([`SheenCache`]) — built on first use and
+/// then shared by every texel at that view. The kernels tried first (the polar split sum,
+/// sheen_l for narrow cloth lobes) need neither, and building them would cost more than
+/// some of those texels (the cache alone zeroes 266 KB). The results are the same bits
+/// with or without them.
+struct View {
+    /// The view cosine, at most 1 (as [`Column::mu`] has it).
+    mu: f64,
+    col: OnceCell<Column>,
+    cache: OnceCell<RefCell<SheenCache>>,
+}
+
+impl View {
+    fn new(mu: f64) -> View {
+        View {
+            mu: mu.min(1.0),
+            col: OnceCell::new(),
+            cache: OnceCell::new(),
+        }
+    }
+
+    fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    fn column(&self) -> &Column {
+        self.col.get_or_init(|| Column::new(self.mu))
+    }
+
+    fn cache(&self) -> &RefCell<SheenCache> {
+        self.cache.get_or_init(Default::default)
+    }
 }
 
 /// What every texel of a dfg table needs.
@@ -147,12 +192,12 @@ impl Ctx {
         }
     }
 
-    /// Texel (i0, j) with the view data `col` of column i0 (and its sheen `cache`).
-    fn texel(&self, j: usize, col: &Column, cache: &RefCell<SheenCache>) -> TexelResult {
-        let mut r = self.pair(j, col, self.tol);
+    /// Texel (i0, j) with the view data of column i0.
+    fn texel(&self, j: usize, view: &View) -> TexelResult {
+        let mut r = self.pair(j, view, self.tol);
         if self.cloth {
             let alpha = self.axes[1].alpha(j).expect("roughness axis");
-            let (v, e, n) = cloth_texel(col, cache, alpha, self.tol);
+            let (v, e, n) = cloth_texel(view, alpha, self.tol);
             r.value.push(v);
             r.error.push(e);
             r.evals += n;
@@ -160,15 +205,15 @@ impl Ctx {
         r
     }
 
-    /// The split-sum channels of row j's lobe in the table's layout, at the view of `col`.
-    fn pair(&self, j: usize, col: &Column, tol: f64) -> TexelResult {
+    /// The split-sum channels of row j's lobe in the table's layout, at `view`.
+    fn pair(&self, j: usize, view: &View, tol: f64) -> TexelResult {
         let s = self.brdfs[j]
             .specular
             .as_ref()
             .expect("validated: dfg has an NDF");
         // each channel of the pair below is a sum/difference of the two integrals, so its
         // error bound is the sum of theirs
-        let ([a, b], [ea, eb], n) = split_sum_column(s, col, col.mu(), tol);
+        let ([a, b], [ea, eb], n) = split_sum_lazy(s, view.mu(), tol, || view.column());
         match self.layout {
             DfgLayout::Karis => TexelResult {
                 value: vec![a, b],
@@ -191,15 +236,15 @@ impl Ctx {
 /// half-vector kernel with the column's shared node data, then the generic path; the
 /// evaluations of abandoned attempts are counted. A pure function of (μ, α, tol): the same
 /// bits whether the texel is computed alone or in its column.
-fn cloth_texel(col: &Column, cache: &RefCell<SheenCache>, alpha: f64, tol: f64) -> (f64, f64, u64) {
+fn cloth_texel(view: &View, alpha: f64, tol: f64) -> (f64, f64, u64) {
     use crate::integrate::sheen_wide;
     let mut spent = 0;
     let first = if alpha < sheen_l::MAX_ALPHA {
-        Some(sheen_l::charlie_sheen_l(col.mu(), alpha, tol))
+        Some(sheen_l::charlie_sheen_l(view.mu(), alpha, tol))
     } else if alpha <= sheen_wide::MAX_ALPHA {
-        let mut c = cache.borrow_mut();
+        let mut c = view.cache().borrow_mut();
         Some(sheen_wide::charlie_sheen_wide_shared(
-            col.mu(),
+            view.mu(),
             alpha,
             tol,
             c.wide(),
@@ -212,10 +257,10 @@ fn cloth_texel(col: &Column, cache: &RefCell<SheenCache>, alpha: f64, tol: f64) 
         Some(Err(n)) => spent = n,
         None => {}
     }
-    match dfg_kernel::charlie_sheen_shared(col, Some(cache), alpha, tol) {
+    match dfg_kernel::charlie_sheen_shared(view.column(), Some(view.cache()), alpha, tol) {
         Ok(e) => (e.value[0], e.error[0], e.evals + spent),
         Err(n) => {
-            let (v, e, m) = sheen_albedo(alpha, col.mu(), tol);
+            let (v, e, m) = sheen_albedo(alpha, view.mu(), tol);
             (v, e, m + n + spent)
         }
     }
@@ -228,21 +273,15 @@ fn cloth_texel(col: &Column, cache: &RefCell<SheenCache>, alpha: f64, tol: f64) 
 pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResult> + Sync> {
     let ctx = Ctx::new(spec);
     Box::new(move |i0| {
-        let col = Column::new(ctx.axes[0].coord(i0));
-        let cache = RefCell::new(SheenCache::default());
-        (0..ctx.axes[1].size)
-            .map(|j| ctx.texel(j, &col, &cache))
-            .collect()
+        let view = View::new(ctx.axes[0].coord(i0));
+        (0..ctx.axes[1].size).map(|j| ctx.texel(j, &view)).collect()
     })
 }
 
 /// One texel on its own (for single-point evaluations such as `readback`'s exact values).
 pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
     let ctx = Ctx::new(spec);
-    Box::new(move |idx| {
-        let col = Column::new(ctx.axes[0].coord(idx[0]));
-        ctx.texel(idx[1], &col, &RefCell::new(SheenCache::default()))
-    })
+    Box::new(move |idx| ctx.texel(idx[1], &View::new(ctx.axes[0].coord(idx[0]))))
 }
 
 /// Where [`by_rows`] cuts every row first, in x = √μ: μ = 0.01 (θv ≈ 89.4°). Closer to
@@ -313,13 +352,13 @@ pub(crate) fn by_rows(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Opt
                     if stop() {
                         return blank();
                     }
-                    as_sample(ctx.pair(j, &Column::new(x * x), t))
+                    as_sample(ctx.pair(j, &View::new(x * x), t))
                 },
                 |i, t| {
                     if stop() {
                         return blank();
                     }
-                    as_sample(ctx.pair(j, &Column::new(ax.coord(i)), t))
+                    as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
                 },
             )
         })
@@ -413,8 +452,7 @@ fn cloth_row(
         if stop() {
             return cloth_sample((0.0, 0.0, 0));
         }
-        let cache = RefCell::new(SheenCache::default());
-        cloth_sample(cloth_texel(&Column::new(mu), &cache, alpha, t))
+        cloth_sample(cloth_texel(&View::new(mu), alpha, t))
     };
     // the texels below the break directly, the rest interpolated
     let k = xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK);
@@ -455,13 +493,12 @@ fn cloth_column(ctx: &Ctx, i: usize, stop: &(dyn Fn() -> bool + Sync)) -> interp
     use crate::integrate::sheen_wide;
     let ay = &ctx.axes[1];
     let ny = ay.size;
-    let col = Column::new(ctx.axes[0].coord(i));
-    let cache = RefCell::new(SheenCache::default());
+    let view = View::new(ctx.axes[0].coord(i));
     let at = |alpha: f64, t: f64| {
         if stop() {
             return (0.0, 0.0, 0);
         }
-        cloth_texel(&col, &cache, alpha, t)
+        cloth_texel(&view, alpha, t)
     };
     let alphas: Vec<f64> = (0..ny)
         .map(|j| ay.alpha(j).expect("roughness axis"))
@@ -571,9 +608,9 @@ mod tests {
         let row_evals = rows.evals;
         for t in 0..300 * 5 {
             let (i, j) = (t % 300, t / 300);
-            let col = Column::new(ctx.axes[0].coord(i));
-            let fine = ctx.pair(j, &col, tol * 1e-3);
-            direct_evals += ctx.pair(j, &col, tol).evals;
+            let view = View::new(ctx.axes[0].coord(i));
+            let fine = ctx.pair(j, &view, tol * 1e-3);
+            direct_evals += ctx.pair(j, &view, tol).evals;
             for c in 0..2 {
                 let (v, e) = (rows.value[2 * t + c], rows.error[2 * t + c]);
                 let d = (v - fine.value[c]).abs();
@@ -631,9 +668,7 @@ mod tests {
         let ctx = Ctx::new(&s);
         let check = |i: usize, j: usize, v: f64, e: f64| {
             let alpha = ctx.axes[1].alpha(j).unwrap();
-            let col = Column::new(ctx.axes[0].coord(i));
-            let cache = RefCell::new(SheenCache::default());
-            let (r, re, _) = cloth_texel(&col, &cache, alpha, tol * 1e-2);
+            let (r, re, _) = cloth_texel(&View::new(ctx.axes[0].coord(i)), alpha, tol * 1e-2);
             assert!(
                 (v - r).abs() <= e + re,
                 "texel ({i}, {j}), alpha {alpha}: {v} vs {r} (estimates {e:e} + {re:e})"
