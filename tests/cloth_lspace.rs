@@ -14,8 +14,8 @@
 //! * `REQ = 1e-6`: the required accuracy of every baked value, relative where it exceeds 1.
 //! * |path − reference| ≤ est + ref_est + `round`: the path's estimate must bound its true
 //!   error. `round = 1e-12·max(1, |value|)` is rounding, which no quadrature estimate
-//!   covers: the path sums ≤ 129 outer terms of inner sums of ≤ 257 terms, each of the
-//!   magnitude of its total ((129 + 257)·2⁻⁵³ ≈ 4e-14 relative), and the integrand's own
+//!   covers: the path sums ≤ 129 outer terms of inner sums of ≤ 1025 terms, each of the
+//!   magnitude of its total ((129 + 1025)·2⁻⁵³ ≈ 1.3e-13 relative), and the integrand's own
 //!   relative rounding (`exp(k ln(sin²θh/s0))`: |k ln|·2⁻⁵³ ≤ 700·2⁻⁵³ ≈ 8e-14 before it is
 //!   cut) is of the same order.
 
@@ -41,9 +41,11 @@ fn round(v: f64) -> f64 {
 /// Every (μ, α) of the grid where the path converges agrees with the reference within
 /// `REQ` and within its own estimate (+ the reference's); it must converge at the table
 /// corners that matter most (the first row and column of 128² and 512² tables), at every
-/// view μ ≥ 0.1, and at ≥ 75% of the points (it gives up at grazing views, μ ≲ 0.02, with
-/// α ≳ 1e-3, where the φ integrand has features at both φ = 0 and φ = π; those texels go to
-/// the half-vector kernel).
+/// view μ ≥ 0.1, at the grazing views of a 128² table's first two columns (μ = 0.5/128,
+/// 1.5/128) for α ≤ 0.03 (the inner rule's 1025 nodes resolve the φ integrand's features
+/// at both φ = 0 and φ = π there; with 257 it gave up for α ≳ 1e-3), and at ≥ 85% of the
+/// points (it still gives up at μ = 0.5/512 for α ≥ 5e-3 and at μ = 0.5/128 for α = 0.06,
+/// where those texels go to the half-vector kernel).
 #[test]
 fn lspace_cloth_matches_reference_and_its_estimate_holds() {
     let mus = [
@@ -68,6 +70,7 @@ fn lspace_cloth_matches_reference_and_its_estimate_holds() {
     ];
     let must = |mu: f64, alpha: f64| {
         mu >= 0.1
+            || ([0.5 / 128.0, 1.5 / 128.0].contains(&mu) && alpha <= 0.03)
             || ([0.5 / 512.0, 0.5 / 128.0].contains(&mu)
                 && [(0.5f64 / 512.0).powi(2), (0.5f64 / 128.0).powi(2)].contains(&alpha))
     };
@@ -126,7 +129,7 @@ fn lspace_cloth_matches_reference_and_its_estimate_holds() {
         failures.join("\n")
     );
     assert!(
-        used * 4 >= pts.len() * 3,
+        used * 100 >= pts.len() * 85,
         "l-space path converged at {used} of {} points; gave up at (mu, alpha) {gave_up:?}",
         pts.len()
     );
