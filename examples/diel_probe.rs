@@ -13,7 +13,10 @@ fn main() {
         let t0 = std::time::Instant::now();
         for j in 0..n {
             let r = (j as f64 + 0.5) / n as f64;
-            let m = RoughDielectric { ndf: Ndf::new(NdfKind::Ggx, r * r).unwrap(), eta };
+            let m = RoughDielectric {
+                ndf: Ndf::new(NdfKind::Ggx, r * r).unwrap(),
+                eta,
+            };
             for i in 0..n {
                 let mu = (i as f64 + 0.5) / n as f64;
                 let e = reflect_transmit(&m, mu, tol);
@@ -21,6 +24,10 @@ fn main() {
                 maxerr = maxerr.max(e.error[0]).max(e.error[1]);
             }
         }
-        println!("eta {eta:.3}: evals/texel {:.0}  est {maxerr:.2e}  {:.1} ms", ev as f64 / (n * n) as f64, t0.elapsed().as_secs_f64() * 1e3);
+        println!(
+            "eta {eta:.3}: evals/texel {:.0}  est {maxerr:.2e}  {:.1} ms",
+            ev as f64 / (n * n) as f64,
+            t0.elapsed().as_secs_f64() * 1e3
+        );
     }
 }

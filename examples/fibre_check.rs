@@ -9,13 +9,19 @@
 use brdfbake::model::btdf::RoughDielectric;
 use brdfbake::model::{Fresnel, Ndf, NdfKind};
 use brdfbake::table::albedo::directional_albedo;
-use brdfbake::table::dielectric::{reflect_transmit, reflect_transmit_etas, reflect_transmit_fibre};
+use brdfbake::table::dielectric::{
+    reflect_transmit, reflect_transmit_etas, reflect_transmit_fibre,
+};
 use brdfbake::table::energy::{directional_albedo_fresnels, fresnel_of_slice};
 use std::time::Instant;
 
 fn table(preset: &str, name: &str) -> brdfbake::TableSpec {
     let p = brdfbake::preset::load(std::path::Path::new(preset)).expect("preset");
-    p.tables.into_iter().find(|t| t.spec.name == name).expect("table").spec
+    p.tables
+        .into_iter()
+        .find(|t| t.spec.name == name)
+        .expect("table")
+        .spec
 }
 
 fn main() {
@@ -42,7 +48,14 @@ fn main() {
             t_f += t0.elapsed().as_secs_f64();
             for z in 0..nz {
                 let t0 = Instant::now();
-                let e = reflect_transmit(&RoughDielectric { ndf: ndf.clone(), eta: etas[z] }, mu, tol);
+                let e = reflect_transmit(
+                    &RoughDielectric {
+                        ndf: ndf.clone(),
+                        eta: etas[z],
+                    },
+                    mu,
+                    tol,
+                );
                 t_t += t0.elapsed().as_secs_f64();
                 ev_t[z] += e.evals;
                 ev_f[z] += fib[z].2;

@@ -432,9 +432,10 @@ const FIBRE_ETAS: usize = 4;
 /// rules ([`reflect_transmit_etas`]): the η ≥ 1 slices, whose breakpoints are all the same,
 /// in groups of up to [`FIBRE_ETAS`] consecutive slices; each η < 1 slice alone, since its
 /// breakpoints (critical angle, transmitted horizon) depend on η and the union of several
-/// slices' breakpoints costs more nodes than it shares (BENCHMARKS.md, fib6: 4 slices of the
-/// preset together 13,400 nodes per fibre against 4 × 7,400 alone, but each node then
-/// serves 8 channels: ~1.4× the CPU time). Returns slice indices per group, in slice order.
+/// slices' breakpoints costs more nodes than it shares (measured on the `dielectric-btdf`
+/// preset, `examples/fibre_check.rs union`: its four η < 1 slices as one rule 37,340 nodes
+/// per fibre against 29,707 for the four alone, and about twice the CPU time, each node then
+/// serving 8 channels; BENCHMARKS.md, fib6). Returns slice indices per group, in slice order.
 pub fn fibre_groups(etas: &[f64]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut open: Option<usize> = None;

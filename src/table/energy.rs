@@ -237,6 +237,10 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
     }
 }
 
+/// What the fibre path of an `albedo-fresnel` table does, as the sidecar's
+/// `quadrature.method` states it (followed by the per-texel method).
+pub const FRESNEL_FIBRE_METHOD: &str = "Fibres: the texels of one (mu, roughness) differ only in the Fresnel factor F(v.h), so up to 8 slices are integrated together as the channels of one nested Clenshaw-Curtis tensor rule (as below: nodes, D and G computed once, times each slice's exact Fresnel factor), refined until every channel's own estimate meets the tolerance; each texel keeps its own channel's estimate. Evaluations count the nodes, once however many slices they serve.";
+
 /// Slices integrated together by one rule of [`fresnel_fibre_fn`] (its channel count).
 const FRESNEL_FIBRE_SLICES: usize = 8;
 
@@ -251,9 +255,8 @@ pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
         && spec.model.masking != Masking::VGroove
         && spec.model.diffuse_weight == 0.0
         && spec.model.ndf.is_some_and(|k| {
-            crate::model::Ndf::new(k, 0.5).is_ok_and(|n| {
-                matches!(InnerWarp::for_ndf(&n), InnerWarp::TanOverScale(_))
-            })
+            crate::model::Ndf::new(k, 0.5)
+                .is_ok_and(|n| matches!(InnerWarp::for_ndf(&n), InnerWarp::TanOverScale(_)))
         })
 }
 
