@@ -368,8 +368,8 @@ pub fn reflect_transmit_etas<const N: usize>(
             INNER_LEVEL,
         );
         let mut ie = inner_err.get();
-        for c in 0..N {
-            ie[c] = ie[c].max(e.error[c]);
+        for (m, &x) in ie.iter_mut().zip(&e.error) {
+            *m = m.max(x);
         }
         inner_err.set(ie);
         inner_evals.set(inner_evals.get() + e.evals);
@@ -387,14 +387,12 @@ pub fn reflect_transmit_etas<const N: usize>(
     }
     let e = panels(phi_integrand, breaks, outer_tol, OUTER_LEVEL);
     let inner_err = inner_err.get();
-    let mut total = Estimate::<N>::zero();
-    for c in 0..N {
-        total.value[c] = 2.0 * e.value[c];
+    Estimate {
+        value: e.value.map(|v| 2.0 * v),
         // inner errors integrate over φ ∈ [0, π], doubled
-        total.error[c] = 2.0 * e.error[c] + 2.0 * PI * inner_err[c];
+        error: std::array::from_fn(|c| 2.0 * e.error[c] + 2.0 * PI * inner_err[c]),
+        evals: inner_evals.get(),
     }
-    total.evals = inner_evals.get();
-    total
 }
 
 pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
