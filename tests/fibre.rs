@@ -130,6 +130,36 @@ fn albedo_fresnel_fibre_matches_per_texel() {
     }
 }
 
+/// Outside the shared rule's scope (V-groove masking: kinked; Charlie: sheen warps) every
+/// term goes by `directional_albedo` itself: the same bits.
+#[test]
+fn albedo_fresnel_fibre_outside_its_scope_is_per_texel() {
+    let tol = 1e-7;
+    let fresnels = [
+        Fresnel::Dielectric { eta: 1.5 },
+        Fresnel::Conductor { eta: 0.2, k: 3.0 },
+    ];
+    for (ndf, masking) in [
+        (NdfKind::Beckmann, Masking::VGroove),
+        (NdfKind::Charlie, Masking::Ashikhmin),
+    ] {
+        let model = ModelSpec {
+            ndf: Some(ndf),
+            masking,
+            fresnel: Fresnel::None,
+            diffuse_weight: 0.0,
+            classic: None,
+        };
+        let fib = directional_albedo_fresnels(&model.brdf(0.3).unwrap(), &fresnels, 0.6, tol);
+        for (z, &f) in fresnels.iter().enumerate() {
+            let mut m = model.clone();
+            m.fresnel = f;
+            let per = directional_albedo(&m.brdf(0.3).unwrap(), 0.6, tol);
+            assert_eq!(fib[z], per, "{ndf:?} {masking:?} {f:?}");
+        }
+    }
+}
+
 fn table(
     kind: TableKind,
     masking: Masking,

@@ -247,17 +247,13 @@ const FRESNEL_FIBRE_SLICES: usize = 8;
 /// Whether an `albedo-fresnel` table goes by fibres: an exact (dielectric or conductor)
 /// Fresnel axis — Schlick slices are E = F0·A + B from the polar split sum already —, not
 /// V-groove masking (its kinked path, per texel) and a lobe the tensor rule takes in the warp
-/// u = asinh(tan θh/α) (not Charlie's sheen warps).
+/// u = asinh(tan θh/α), i.e. every NDF but Charlie (whose sheen warps have special cases).
 pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
-    use crate::integrate::tensor::InnerWarp;
     spec.kind == TableKind::AlbedoFresnel
         && matches!(spec.axes.get(2).map(|a| a.quantity), Some(Quantity::Fresnel(q)) if !q.is_f0())
         && spec.model.masking != Masking::VGroove
         && spec.model.diffuse_weight == 0.0
-        && spec.model.ndf.is_some_and(|k| {
-            crate::model::Ndf::new(k, 0.5)
-                .is_ok_and(|n| matches!(InnerWarp::for_ndf(&n), InnerWarp::TanOverScale(_)))
-        })
+        && spec.model.ndf.is_some_and(|k| k != NdfKind::Charlie)
 }
 
 /// E(μ) of one BRDF for several Fresnel terms at once: the directional albedo of `brdf`
@@ -269,9 +265,10 @@ pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
 /// rule refines until every channel's own estimate meets `tol`, and each term keeps its own
 /// channel's estimate; evaluations count nodes once (returned with the group's first term,
 /// 0 with the others). Where the shared rule does not converge, the group's terms go one by
-/// one through [`directional_albedo`], the abandoned attempt counted too. For lobes peaked
-/// at the normal without V-groove masking or a diffuse lobe (as [`uses_fresnel_fibre`]
-/// checks for a table); returns `[value], [error], evaluations` per term.
+/// one through [`directional_albedo`], the abandoned attempt counted too; so do all terms of
+/// a BRDF outside the shared path's scope (a Charlie lobe, V-groove masking, a diffuse lobe:
+/// [`uses_fresnel_fibre`] keeps such tables texel by texel). Returns `[value], [error],
+/// evaluations` per term.
 pub fn directional_albedo_fresnels(
     brdf: &Brdf,
     fresnels: &[Fresnel],
@@ -281,16 +278,25 @@ pub fn directional_albedo_fresnels(
     use crate::integrate::tensor::{integrate_over_l_cc_counted, InnerWarp};
     let s = brdf.specular.as_ref().expect("a specular lobe");
     let warp = InnerWarp::for_ndf(&s.ndf);
+    // (a lobe outside this path's scope: every term by the per-term path, no attempt)
+    let shared = matches!(warp, InnerWarp::TanOverScale(_))
+        && s.masking != Masking::VGroove
+        && brdf.diffuse_weight == 0.0;
     let mut out = Vec::with_capacity(fresnels.len());
     for fs in fresnels.chunks(FRESNEL_FIBRE_SLICES) {
-        let e = integrate_over_l_cc_counted::<FRESNEL_FIBRE_SLICES, _>(mu, warp, tol, |n| {
+        let shared_rule = |n: &crate::integrate::hemisphere::Node| {
             let cw = s.cosine_weighted_with(n, 1.0);
             let mut y = [0.0; FRESNEL_FIBRE_SLICES];
             for (k, f) in fs.iter().enumerate() {
                 y[k] = cw * f.eval(n.v_dot_h);
             }
             y
-        });
+        };
+        let e = if shared {
+            integrate_over_l_cc_counted::<FRESNEL_FIBRE_SLICES, _>(mu, warp, tol, shared_rule)
+        } else {
+            Err(0)
+        };
         match e {
             Ok(e) => out.extend(
                 (0..fs.len())
