@@ -223,7 +223,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::method(spec)
         }
-        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation".into(),
+        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation. Fibres: the eta >= 1 texels of one (mu, roughness), whose breakpoints are the same, are integrated together, up to 4, as the channels (R, T of each) of one such rule: nodes, D, G1(v) and the reflected direction computed once, each eta's Fresnel factor and refracted direction per node; a panel is refined until every channel's own estimate meets its share, and each texel keeps its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve".into(),
         TableKind::Albedo
         | TableKind::AlbedoAvg
         | TableKind::Dfg
@@ -279,6 +279,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
             crate::integrate::ggx_polar::METHOD,
             crate::integrate::dfg_kernel::METHOD
+        )
+    } else {
+        method
+    };
+    let method = if crate::table::energy::uses_fresnel_fibre(spec) {
+        format!(
+            "{} Where that fails, texel by texel: {method}",
+            crate::table::energy::FRESNEL_FIBRE_METHOD
         )
     } else {
         method

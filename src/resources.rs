@@ -171,11 +171,27 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             }
         }
         K::KullaConty => (albedo, avg),
+        // exact Fresnel slices go by fibres (all slices of one (μ, r) as the channels of one
+        // rule, nodes counted once): 141 per texel on `fresnel-albedo`/e-dielectric (847 texel
+        // by texel; fib6, 2026-11-30, `examples/fibre_check.rs`)
+        K::AlbedoFresnel if crate::table::energy::uses_fresnel_fibre(spec) => (150.0, 0.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
         // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
         // above was before the closed-form kinks and Clenshaw–Curtis panels of
-        // src/table/dielectric.rs)
-        K::DielectricBtdf => (5_100.0, 0.0),
+        // src/table/dielectric.rs). By fibres (fib6, 2026-11-30, `examples/fibre_check.rs`):
+        // the η ≥ 1 slices of one (μ, r) share one rule, 2,812 nodes per group of 4 (~700
+        // per texel, nodes counted once), the η < 1 slices stay one rule each, 6,963–7,897
+        // per texel: 4,065 per texel on the preset (half its slices below 1)
+        K::DielectricBtdf => {
+            // (the fraction of η < 1 slices; all of them if there is no Fresnel axis)
+            let frac = spec.axes.get(2).map_or(1.0, |z| {
+                let below = (0..z.size)
+                    .filter(|&k| z.fresnel_parameter(k).is_some_and(|eta| eta < 1.0))
+                    .count();
+                below as f64 / z.size.max(1) as f64
+            });
+            (7_500.0 * frac + 750.0 * (1.0 - frac), 0.0)
+        }
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
         // Models with the 1D fast path (src/integrate/classic_lobes.rs) measured on the

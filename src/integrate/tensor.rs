@@ -222,6 +222,17 @@ pub fn integrate_over_l_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
         .ok()
 }
 
+/// [`integrate_over_l_cc`] that also says what an abandoned attempt cost: `Err(evaluations)`
+/// where the nested rules do not reach `tol_abs`.
+pub fn integrate_over_l_cc_counted<const N: usize, F: Fn(&Node) -> [f64; N]>(
+    n_dot_v: f64,
+    warp: InnerWarp,
+    tol_abs: f64,
+    g: F,
+) -> Result<Estimate<N>, u64> {
+    SCRATCH.with(|s| run(&mut s.borrow_mut(), n_dot_v, warp, tol_abs, &g))
+}
+
 fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
     sc: &mut Scratch,
     n_dot_v: f64,

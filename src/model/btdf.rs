@@ -57,38 +57,69 @@ impl RoughDielectric {
     /// micro-normal of one view: a caller integrating over h computes it once).
     #[inline]
     pub fn integrands_with(&self, n_dot_v: f64, g1v: f64, m: &MicroNormal) -> [f64; 2] {
-        let c = m.v_dot_h;
-        if c <= 0.0 || n_dot_v <= 0.0 {
-            return [0.0, 0.0];
-        }
-        let d = self.ndf.d_cs(m.n_dot_h, m.sin2_h);
-        if d == 0.0 {
-            return [0.0, 0.0];
-        }
-        let w = d * g1v * c / n_dot_v;
-        let f = dielectric(c, self.eta);
-        let n_dot_lr = 2.0 * c * m.n_dot_h - n_dot_v;
-        let r = if n_dot_lr > 0.0 {
-            w * f * self.ndf.g1(n_dot_lr.min(1.0))
-        } else {
-            0.0
-        };
-        let t = match self.n_dot_lt(n_dot_v, m) {
-            Some(nlt) if nlt < 0.0 => w * (1.0 - f) * self.ndf.g1((-nlt).min(1.0)),
-            _ => 0.0,
-        };
-        [r, t]
+        integrands_many(&self.ndf, &[self.eta], n_dot_v, g1v, m)
     }
 
     /// n·l_t of the refracted direction, `None` under total internal reflection.
     #[inline]
     pub fn n_dot_lt(&self, n_dot_v: f64, m: &MicroNormal) -> Option<f64> {
-        let c = m.v_dot_h;
-        let s2t = (1.0 - c * c) / (self.eta * self.eta);
-        if s2t >= 1.0 {
-            return None;
-        }
-        let ct = (1.0 - s2t).sqrt();
-        Some((c / self.eta - ct) * m.n_dot_h - n_dot_v / self.eta)
+        n_dot_lt(self.eta, n_dot_v, m)
     }
+}
+
+/// n·l_t of the direction refracted at micro-normal `m` into relative index `eta`
+/// (Walter et al. 2007, eq. 40: l_t = (c/η − cos θt) h − v/η), `None` under total internal
+/// reflection.
+#[inline]
+fn n_dot_lt(eta: f64, n_dot_v: f64, m: &MicroNormal) -> Option<f64> {
+    let c = m.v_dot_h;
+    let s2t = (1.0 - c * c) / (eta * eta);
+    if s2t >= 1.0 {
+        return None;
+    }
+    let ct = (1.0 - s2t).sqrt();
+    Some((c / eta - ct) * m.n_dot_h - n_dot_v / eta)
+}
+
+/// The `[R, T]` integrands of [`RoughDielectric::integrands_with`] for several relative
+/// indices at once, channels `2k` (R) and `2k + 1` (T) for `etas[k]`; channels beyond
+/// `2·etas.len()` are 0. What does not depend on η — D(h), G1(n·v), the Jacobian-free weight
+/// w = D G1(v) c/(n·v), the reflected direction and its G1 — is computed once per
+/// micro-normal; per η only F(c, η) (exact dielectric), the refracted direction and its G1
+/// (Walter et al. 2007, eqs. 20–23, 40; module docs).
+#[inline]
+pub fn integrands_many<const N: usize>(
+    ndf: &Ndf,
+    etas: &[f64],
+    n_dot_v: f64,
+    g1v: f64,
+    m: &MicroNormal,
+) -> [f64; N] {
+    debug_assert!(2 * etas.len() <= N);
+    let mut out = [0.0; N];
+    let c = m.v_dot_h;
+    if c <= 0.0 || n_dot_v <= 0.0 {
+        return out;
+    }
+    let d = ndf.d_cs(m.n_dot_h, m.sin2_h);
+    if d == 0.0 {
+        return out;
+    }
+    let w = d * g1v * c / n_dot_v;
+    let n_dot_lr = 2.0 * c * m.n_dot_h - n_dot_v;
+    let g1r = if n_dot_lr > 0.0 {
+        ndf.g1(n_dot_lr.min(1.0))
+    } else {
+        0.0
+    };
+    for (k, &eta) in etas.iter().enumerate() {
+        let f = dielectric(c, eta);
+        out[2 * k] = w * f * g1r;
+        if let Some(nlt) = n_dot_lt(eta, n_dot_v, m) {
+            if nlt < 0.0 {
+                out[2 * k + 1] = w * (1.0 - f) * ndf.g1((-nlt).min(1.0));
+            }
+        }
+    }
+    out
 }

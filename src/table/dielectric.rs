@@ -43,7 +43,7 @@ use super::{TableSpec, TexelResult};
 use crate::integrate::cc1d::cc_or_adaptive;
 use crate::integrate::hemisphere::{nested_tolerances, tan_theta_h_max};
 use crate::integrate::{Estimate, Tolerance};
-use crate::model::btdf::{MicroNormal, RoughDielectric};
+use crate::model::btdf::{integrands_many, MicroNormal, RoughDielectric};
 use crate::model::{Fresnel, Ndf};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -121,18 +121,69 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     }
 }
 
-/// Integrates over the panels between sorted breakpoints. `tol.abs` is shared half by
+/// Most breakpoints of one integral: in u, 0, the end, the reflected horizon and 3 per η
+/// (two critical-angle crossings, the transmitted horizon); in φ, 0, π, π/2 and 4 per η
+/// ([`phi_breaks`]); for up to [`MAX_ETAS`] indices.
+const MAX_BREAKS: usize = 3 + 4 * MAX_ETAS;
+
+/// Most relative indices integrated together by [`reflect_transmit_etas`].
+pub const MAX_ETAS: usize = 8;
+
+/// The breakpoints of one integral in a fixed-size buffer on the stack (this runs once per
+/// φ node: a growing `Vec` here cost ~8% of the bake in `realloc`).
+#[derive(Clone, Copy)]
+struct Breaks {
+    b: [Break; MAX_BREAKS],
+    len: usize,
+}
+
+impl Breaks {
+    fn new() -> Breaks {
+        Breaks {
+            b: [Break {
+                x: 0.0,
+                singular: false,
+            }; MAX_BREAKS],
+            len: 0,
+        }
+    }
+
+    fn push(&mut self, x: f64, singular: bool) {
+        assert!(self.len < MAX_BREAKS, "more than {MAX_BREAKS} breakpoints");
+        self.b[self.len] = Break { x, singular };
+        self.len += 1;
+    }
+
+    /// Sorted by x (insertion sort: stable, no allocation, ≤ [`MAX_BREAKS`] entries).
+    fn sorted(mut self) -> Breaks {
+        for i in 1..self.len {
+            let mut j = i;
+            while j > 0 && self.b[j - 1].x > self.b[j].x {
+                self.b.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+        self
+    }
+
+    fn as_slice(&self) -> &[Break] {
+        &self.b[..self.len]
+    }
+}
+
+/// Integrates over the panels between the breakpoints. `tol.abs` is shared half by
 /// length and half equally among the n non-empty panels (shares sum to `tol.abs`): by
 /// length alone a short panel next to a kink, or the lobe's panel in front of the long
 /// exponential tail up to u = 30, would get a tiny share and need the finest rule for
 /// nothing.
 fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
     mut f: F,
-    mut breaks: Vec<Break>,
+    breaks: Breaks,
     tol: Tolerance,
     level: usize,
 ) -> Estimate<N> {
-    breaks.sort_by(|a, b| a.x.total_cmp(&b.x));
+    let sorted = breaks.sorted();
+    let breaks = sorted.as_slice();
     let span = breaks.last().map_or(0.0, |l| l.x) - breaks.first().map_or(0.0, |f| f.x);
     let mut total = Estimate::<N>::zero();
     if span <= 0.0 {
@@ -217,15 +268,32 @@ pub fn phi_breaks(eta: f64, mu: f64) -> Vec<(f64, bool)> {
 
 /// `[R, T]` at a view with n·v = `mu`, to absolute tolerance `tol` per channel.
 pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
+    reflect_transmit_etas::<2>(&m.ndf, &[m.eta], mu, tol)
+}
+
+/// `[R, T]` for several relative indices `etas` at once (at most [`MAX_ETAS`], and
+/// `2·etas.len() ≤ N`): channels `2k`, `2k + 1` are R and T of `etas[k]` (those beyond
+/// `2·etas.len()` are 0), each to absolute tolerance `tol` with its own error estimate. One
+/// nested rule serves them all: its panel boundaries are the union of every index's kinks
+/// (for η ≥ 1 they are the same for all: the reflected horizon and π/2), a panel is refined
+/// until every channel meets its share, and every node computes what does not depend on η
+/// once ([`integrands_many`]). `evals` counts the u nodes, once however many indices they
+/// serve.
+pub fn reflect_transmit_etas<const N: usize>(
+    ndf: &Ndf,
+    etas: &[f64],
+    mu: f64,
+    tol: f64,
+) -> Estimate<N> {
+    assert!(
+        etas.len() <= MAX_ETAS && 2 * etas.len() <= N,
+        "{} indices in {N} channels",
+        etas.len()
+    );
     let mu = mu.min(1.0);
     let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
     let tan_v = sin_v / mu;
-    let alpha = m.ndf.alpha();
-    let crit = if m.eta < 1.0 {
-        Some((1.0 - m.eta * m.eta).sqrt())
-    } else {
-        None
-    };
+    let alpha = ndf.alpha();
     // budget as in `hemisphere::integrate_over_l`: half outer, half inner; the outer
     // integral over [0, π] is doubled by symmetry, so it gets half the outer share
     let (inner_tol, outer_whole) = nested_tolerances(tol);
@@ -233,26 +301,29 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
         abs: outer_whole.abs / 2.0,
         ..outer_whole
     };
-    let inner_err = std::cell::Cell::new(0.0f64);
+    // per channel: the largest inner estimate over the φ nodes
+    let inner_err = std::cell::Cell::new([0.0f64; N]);
     let inner_evals = std::cell::Cell::new(0u64);
     let to_u = |t: f64| (t / alpha).asinh().min(U_CAP);
-    let g1v = m.ndf.g1(mu);
-    let phi_integrand = |phi: f64| -> [f64; 2] {
+    let g1v = ndf.g1(mu);
+    let phi_integrand = |phi: f64| -> [f64; N] {
         let (sp, cp) = phi.sin_cos();
         let u_end = if cp < 0.0 && sin_v > 0.0 {
             to_u(mu / (sin_v * -cp))
         } else {
             U_CAP
         };
-        let brk = |x: f64, singular: bool| Break { x, singular };
-        let mut breaks = vec![brk(0.0, false), brk(u_end, false)];
+        let mut breaks = Breaks::new();
+        breaks.push(0.0, false);
+        breaks.push(u_end, false);
         let mut inside = |u: f64, singular: bool| {
             if u > 0.0 && u < u_end {
-                breaks.push(brk(u, singular));
+                breaks.push(u, singular);
             }
         };
         inside(to_u(tan_theta_h_max(tan_v, cp)), false);
-        if let Some(c) = crit {
+        for &eta in etas.iter().filter(|&&eta| eta < 1.0) {
+            let c = (1.0 - eta * eta).sqrt();
             let a = (mu * mu + sin_v * sin_v * cp * cp).sqrt();
             if c < a {
                 let psi = (sin_v * cp).atan2(mu);
@@ -264,7 +335,7 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
                 }
             }
             // the transmitted direction's horizon (a kink: T's G1 vanishes linearly there)
-            if let Some(t) = transmitted_horizon(m.eta, mu, sin_v, cp, sp) {
+            if let Some(t) = transmitted_horizon(eta, mu, sin_v, cp, sp) {
                 inside(to_u(t), false);
             }
         }
@@ -286,41 +357,42 @@ pub fn reflect_transmit(m: &RoughDielectric, mu: f64, tol: f64) -> Estimate<2> {
                 };
                 // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh
                 let jac = sin_h * alpha * cosh_u * c2;
-                let [r, tr] = m.integrands_with(mu, g1v, &h);
-                [r * jac, tr * jac]
+                let mut y = integrands_many::<N>(ndf, etas, mu, g1v, &h);
+                for v in y.iter_mut() {
+                    *v *= jac;
+                }
+                y
             },
             breaks,
             inner_tol,
             INNER_LEVEL,
         );
-        inner_err.set(inner_err.get().max(e.max_error()));
+        let mut ie = inner_err.get();
+        for (m, &x) in ie.iter_mut().zip(&e.error) {
+            *m = m.max(x);
+        }
+        inner_err.set(ie);
         inner_evals.set(inner_evals.get() + e.evals);
         e.value
     };
-    let mut breaks = vec![
-        Break {
-            x: 0.0,
-            singular: false,
-        },
-        Break {
-            x: PI,
-            singular: false,
-        },
-    ];
-    breaks.extend(
-        phi_breaks(m.eta, mu)
-            .into_iter()
-            .map(|(x, singular)| Break { x, singular }),
-    );
-    let e = panels(phi_integrand, breaks, outer_tol, OUTER_LEVEL);
-    let mut total = Estimate::<2>::zero();
-    for c in 0..2 {
-        total.value[c] = 2.0 * e.value[c];
-        // inner errors integrate over φ ∈ [0, π], doubled
-        total.error[c] = 2.0 * e.error[c] + 2.0 * PI * inner_err.get();
+    let mut breaks = Breaks::new();
+    breaks.push(0.0, false);
+    breaks.push(PI, false);
+    breaks.push(FRAC_PI_2, false);
+    for &eta in etas {
+        // (π/2, every index's first break, once)
+        for (x, singular) in phi_breaks(eta, mu).into_iter().skip(1) {
+            breaks.push(x, singular);
+        }
     }
-    total.evals = inner_evals.get();
-    total
+    let e = panels(phi_integrand, breaks, outer_tol, OUTER_LEVEL);
+    let inner_err = inner_err.get();
+    Estimate {
+        value: e.value.map(|v| 2.0 * v),
+        // inner errors integrate over φ ∈ [0, π], doubled
+        error: std::array::from_fn(|c| 2.0 * e.error[c] + 2.0 * PI * inner_err[c]),
+        evals: inner_evals.get(),
+    }
 }
 
 pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResult + Sync> {
@@ -348,5 +420,93 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
             error: e.error.to_vec(),
             evals: e.evals,
         }
+    })
+}
+
+/// Most indices per shared rule in a table's fibre (channels R, T each: 8 channels).
+const FIBRE_ETAS: usize = 4;
+
+/// How the slices of one fibre (fixed μ and roughness, every η) are grouped into shared
+/// rules ([`reflect_transmit_etas`]): the η ≥ 1 slices, whose breakpoints are all the same,
+/// in groups of up to [`FIBRE_ETAS`] consecutive slices; each η < 1 slice alone, since its
+/// breakpoints (critical angle, transmitted horizon) depend on η and the union of several
+/// slices' breakpoints costs more nodes than it shares (measured on the `dielectric-btdf`
+/// preset, `examples/fibre_check.rs union`: its four η < 1 slices as one rule 37,340 nodes
+/// per fibre against 29,707 for the four alone, and about twice the CPU time, each node then
+/// serving 8 channels; BENCHMARKS.md, fib6). Returns slice indices per group, in slice order.
+pub fn fibre_groups(etas: &[f64]) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut open: Option<usize> = None;
+    for (z, &eta) in etas.iter().enumerate() {
+        if eta < 1.0 {
+            groups.push(vec![z]);
+            open = None;
+            continue;
+        }
+        match open {
+            Some(g) if groups[g].len() < FIBRE_ETAS => groups[g].push(z),
+            _ => {
+                open = Some(groups.len());
+                groups.push(vec![z]);
+            }
+        }
+    }
+    groups
+}
+
+/// `[R, T]` of every slice of one fibre: `etas` at one view `mu` and one NDF, grouped by
+/// [`fibre_groups`]; per slice its values, its own error estimates and the evaluations of
+/// its group (counted at the group's first slice, 0 at the others).
+pub fn reflect_transmit_fibre(
+    ndf: &Ndf,
+    etas: &[f64],
+    mu: f64,
+    tol: f64,
+) -> Vec<([f64; 2], [f64; 2], u64)> {
+    let mut out = vec![([0.0; 2], [0.0; 2], 0); etas.len()];
+    for g in fibre_groups(etas) {
+        let group: Vec<f64> = g.iter().map(|&z| etas[z]).collect();
+        let (value, error, evals): (Vec<f64>, Vec<f64>, u64) = if group.len() == 1 {
+            let e = reflect_transmit_etas::<2>(ndf, &group, mu, tol);
+            (e.value.to_vec(), e.error.to_vec(), e.evals)
+        } else {
+            let e = reflect_transmit_etas::<{ 2 * FIBRE_ETAS }>(ndf, &group, mu, tol);
+            (e.value.to_vec(), e.error.to_vec(), e.evals)
+        };
+        for (k, &z) in g.iter().enumerate() {
+            out[z] = (
+                [value[2 * k], value[2 * k + 1]],
+                [error[2 * k], error[2 * k + 1]],
+                if k == 0 { evals } else { 0 },
+            );
+        }
+    }
+    out
+}
+
+/// The fibre path of a `dielectric-btdf` table ([`super::FibreFn`]): every η slice of one
+/// (μ, roughness) pair by [`reflect_transmit_fibre`].
+pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
+    let axes = spec.axes.clone();
+    let tol = spec.tolerance;
+    let kind = spec.model.ndf.expect("validated");
+    let ndfs: Vec<Ndf> = (0..axes[1].size)
+        .map(|j| Ndf::new(kind, axes[1].alpha(j).expect("roughness axis")).expect("validated"))
+        .collect();
+    let etas: Vec<f64> = (0..axes[2].size)
+        .map(|z| match super::energy::fresnel_of_slice(spec, z) {
+            Fresnel::Dielectric { eta } => eta,
+            _ => unreachable!("validated: an eta axis"),
+        })
+        .collect();
+    Box::new(move |i, j| {
+        reflect_transmit_fibre(&ndfs[j], &etas, axes[0].coord(i), tol)
+            .into_iter()
+            .map(|(value, error, evals)| TexelResult {
+                value: value.to_vec(),
+                error: error.to_vec(),
+                evals,
+            })
+            .collect()
     })
 }

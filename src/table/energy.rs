@@ -224,3 +224,133 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
         _ => unreachable!("not an energy kind"),
     }
 }
+
+/// The fibre path ([`super::FibreFn`]) of a table kind, where it has one: `dielectric-btdf`
+/// ([`super::dielectric::fibre_fn`]) and `albedo-fresnel` with the exact dielectric or
+/// conductor Fresnel term of a smooth lobe peaked at the normal ([`fresnel_fibre_fn`]).
+/// `None`: the table is baked texel by texel.
+pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
+    match spec.kind {
+        TableKind::DielectricBtdf => Some(super::dielectric::fibre_fn(spec)),
+        TableKind::AlbedoFresnel => fresnel_fibre_fn(spec),
+        _ => None,
+    }
+}
+
+/// What the fibre path of an `albedo-fresnel` table does, as the sidecar's
+/// `quadrature.method` states it (followed by the per-texel method).
+pub const FRESNEL_FIBRE_METHOD: &str = "Fibres: the texels of one (mu, roughness) differ only in the Fresnel factor F(v.h), so up to 8 slices are integrated together as the channels of one nested Clenshaw-Curtis tensor rule (as below: nodes, D and G computed once, times each slice's exact Fresnel factor), refined until every channel's own estimate meets the tolerance; each texel keeps its own channel's estimate. Evaluations count the nodes, once however many slices they serve.";
+
+/// Slices integrated together by one rule of [`fresnel_fibre_fn`] (its channel count).
+const FRESNEL_FIBRE_SLICES: usize = 8;
+
+/// Whether an `albedo-fresnel` table goes by fibres: an exact (dielectric or conductor)
+/// Fresnel axis — Schlick slices are E = F0·A + B from the polar split sum already —, not
+/// V-groove masking (its kinked path, per texel) and a lobe the tensor rule takes in the warp
+/// u = asinh(tan θh/α), i.e. every NDF but Charlie (whose sheen warps have special cases).
+pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
+    spec.kind == TableKind::AlbedoFresnel
+        && matches!(spec.axes.get(2).map(|a| a.quantity), Some(Quantity::Fresnel(q)) if !q.is_f0())
+        && spec.model.masking != Masking::VGroove
+        && spec.model.diffuse_weight == 0.0
+        && spec.model.ndf.is_some_and(|k| k != NdfKind::Charlie)
+}
+
+/// E(μ) of one BRDF for several Fresnel terms at once: the directional albedo of `brdf`
+/// (whose own Fresnel term is ignored) with each of `fresnels` in turn, to absolute tolerance
+/// `tol` each. E_p(μ) = ∫ D G F_p(v·h)/(4 n·v) dω_l differs between the terms only in the
+/// factor F_p(v·h), so up to [`FRESNEL_FIBRE_SLICES`] of them are the channels of one tensor
+/// rule ([`integrate_over_l_cc_counted`](crate::integrate::tensor::integrate_over_l_cc_counted)):
+/// the nodes, D·G and the Jacobians are computed once and multiplied by each term's F. The
+/// rule refines until every channel's own estimate meets `tol`, and each term keeps its own
+/// channel's estimate; evaluations count nodes once (returned with the group's first term,
+/// 0 with the others). Where the shared rule does not converge, the group's terms go one by
+/// one through [`directional_albedo`], the abandoned attempt counted too; so do all terms of
+/// a BRDF outside the shared path's scope (a Charlie lobe, V-groove masking, a diffuse lobe:
+/// [`uses_fresnel_fibre`] keeps such tables texel by texel). Returns `[value], [error],
+/// evaluations` per term.
+pub fn directional_albedo_fresnels(
+    brdf: &Brdf,
+    fresnels: &[Fresnel],
+    mu: f64,
+    tol: f64,
+) -> Vec<([f64; 1], [f64; 1], u64)> {
+    use crate::integrate::tensor::{integrate_over_l_cc_counted, InnerWarp};
+    let s = brdf.specular.as_ref().expect("a specular lobe");
+    let warp = InnerWarp::for_ndf(&s.ndf);
+    // (a lobe outside this path's scope: every term by the per-term path, no attempt)
+    let shared = matches!(warp, InnerWarp::TanOverScale(_))
+        && s.masking != Masking::VGroove
+        && brdf.diffuse_weight == 0.0;
+    let mut out = Vec::with_capacity(fresnels.len());
+    for fs in fresnels.chunks(FRESNEL_FIBRE_SLICES) {
+        let shared_rule = |n: &crate::integrate::hemisphere::Node| {
+            let cw = s.cosine_weighted_with(n, 1.0);
+            let mut y = [0.0; FRESNEL_FIBRE_SLICES];
+            for (k, f) in fs.iter().enumerate() {
+                y[k] = cw * f.eval(n.v_dot_h);
+            }
+            y
+        };
+        let e = if shared {
+            integrate_over_l_cc_counted::<FRESNEL_FIBRE_SLICES, _>(mu, warp, tol, shared_rule)
+        } else {
+            Err(0)
+        };
+        match e {
+            Ok(e) => out.extend(
+                (0..fs.len())
+                    .map(|k| ([e.value[k]], [e.error[k]], if k == 0 { e.evals } else { 0 })),
+            ),
+            Err(spent) => {
+                for (k, &f) in fs.iter().enumerate() {
+                    let mut b = brdf.clone();
+                    if let Some(s) = b.specular.as_mut() {
+                        s.fresnel = f;
+                    }
+                    let (v, e, n) = directional_albedo(&b, mu, tol);
+                    out.push((v, e, n + if k == 0 { spent } else { 0 }));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The fibre path of an `albedo-fresnel` table with an exact Fresnel axis
+/// ([`uses_fresnel_fibre`]): every slice of one (μ, roughness) by
+/// [`directional_albedo_fresnels`].
+fn fresnel_fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
+    if !uses_fresnel_fibre(spec) {
+        return None;
+    }
+    let axes = spec.axes.clone();
+    // one BRDF per roughness (axis 1), any numeric G1 built now (each a pure function of α)
+    let brdfs: Vec<Brdf> = (0..axes[1].size)
+        .into_par_iter()
+        .map(|j| {
+            let b = spec
+                .model
+                .brdf(axes[1].alpha(j).expect("roughness axis"))
+                .expect("validated");
+            if let Some(s) = &b.specular {
+                s.prepare();
+            }
+            b
+        })
+        .collect();
+    let tol = spec.tolerance;
+    let fresnels: Vec<Fresnel> = (0..axes[2].size)
+        .map(|z| fresnel_of_slice(spec, z))
+        .collect();
+    Some(Box::new(move |i, j| {
+        directional_albedo_fresnels(&brdfs[j], &fresnels, axes[0].coord(i), tol)
+            .into_iter()
+            .map(|(v, e, n)| TexelResult {
+                value: v.to_vec(),
+                error: e.to_vec(),
+                evals: n,
+            })
+            .collect()
+    }))
+}

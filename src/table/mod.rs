@@ -62,14 +62,20 @@ impl TexelResult {
     }
 }
 
+/// A table kind's fibre path: the texel results of the line of texels along axis 2 (every
+/// slice) at axis-0 index `i` and axis-1 index `j`, in slice order. For kinds whose texels
+/// along axis 2 (the Fresnel axis) share every quadrature node but a per-slice factor, so
+/// that one task integrates them together (`energy::fibre_fn`).
+pub(crate) type FibreFn = Box<dyn Fn(usize, usize) -> Vec<TexelResult> + Sync>;
+
 /// Bakes a table. Validates the spec first; never returns a table with NaN or Inf.
 pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
     bake_until(spec, None)
 }
 
 /// [`bake`], giving up with [`BakeError::TimeLimit`] once `deadline` has passed (checked
-/// before every texel — every column of a dfg table —, so a bake overruns it by at most one
-/// texel or column per thread; a texel's
+/// before every texel — every column of a dfg table, every fibre of a table with a fibre
+/// path —, so a bake overruns it by at most one texel, column or fibre per thread; a texel's
 /// hemisphere integral is itself bounded by
 /// [`TEXEL_EVAL_BUDGET`](crate::integrate::hemisphere::TEXEL_EVAL_BUDGET)).
 pub fn bake_until(
@@ -87,8 +93,8 @@ pub fn bake_until(
         spec.axes.get(2).map_or(1, |a| a.size),
     ];
     let n = dims[0] * dims[1] * dims[2];
-    // `--max-time`: checked before every texel (every column of a dfg table); once passed,
-    // the remaining work is skipped and the bake fails with nothing to write
+    // `--max-time`: checked before every texel (every column of a dfg table, every fibre);
+    // once passed, the remaining work is skipped and the bake fails with nothing to write
     let stopped = std::sync::atomic::AtomicBool::new(false);
     let out_of_time = || {
         use std::sync::atomic::Ordering::Relaxed;
@@ -110,8 +116,26 @@ pub fn bake_until(
         None
     };
     let by_column = spec.kind == TableKind::Dfg && dense.is_none();
+    // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
+    // i + j·nx holds the fibre's texels in slice order
+    let fibre = if by_column || dense.is_some() {
+        None
+    } else {
+        energy::fibre_fn(spec)
+    };
     let blocks: Vec<Vec<TexelResult>> = if dense.is_some() {
         Vec::new()
+    } else if let Some(fibre) = &fibre {
+        (0..dims[0] * dims[1])
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|ij| {
+                if out_of_time() {
+                    return Vec::new();
+                }
+                fibre(ij % dims[0], ij / dims[0])
+            })
+            .collect()
     } else if by_column {
         let column = dfg::column_fn(spec);
         (0..dims[0])
@@ -169,6 +193,9 @@ pub fn bake_until(
         }
         let r = if by_column {
             &blocks[i % dims[0]][i / dims[0]]
+        } else if fibre.is_some() {
+            let nxy = dims[0] * dims[1];
+            &blocks[i % nxy][i / nxy]
         } else {
             &blocks[0][i]
         };
