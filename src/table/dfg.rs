@@ -339,51 +339,59 @@ pub(crate) fn by_rows(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Opt
         error: vec![0.0; 2],
         evals: 0,
     };
-    let rows: Vec<interp1d::LineValues> = (0..ny)
-        .into_par_iter()
-        .with_min_len(1)
-        .map(|j| {
-            interp1d::line(
-                &xs,
-                &[GRAZING_BREAK],
-                2,
-                ctx.tol,
-                |x, t| {
-                    if stop() {
-                        return blank();
-                    }
-                    as_sample(ctx.pair(j, &View::new(x * x), t))
-                },
-                |i, t| {
-                    if stop() {
-                        return blank();
-                    }
-                    as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
-                },
-            )
-        })
-        .collect();
+    let pair_rows = || -> Vec<interp1d::LineValues> {
+        (0..ny)
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|j| {
+                interp1d::line(
+                    &xs,
+                    &[GRAZING_BREAK],
+                    2,
+                    ctx.tol,
+                    |x, t| {
+                        if stop() {
+                            return blank();
+                        }
+                        as_sample(ctx.pair(j, &View::new(x * x), t))
+                    },
+                    |i, t| {
+                        if stop() {
+                            return blank();
+                        }
+                        as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
+                    },
+                )
+            })
+            .collect()
+    };
     // the cloth channel: narrow lobes along rows, wide ones along columns (`cloth_rows`,
     // `cloth_column`)
     let narrow = |j: usize| ay.alpha(j).expect("roughness axis") < sheen_l::MAX_ALPHA;
-    let cloth_rows: Vec<Option<interp1d::LineValues>> = if ctx.cloth {
+    let narrow_rows = || -> Vec<Option<interp1d::LineValues>> {
+        if !ctx.cloth {
+            return Vec::new();
+        }
         (0..ny)
             .into_par_iter()
             .with_min_len(1)
             .map(|j| narrow(j).then(|| cloth_row(&ctx, &xs, j, stop)))
             .collect()
-    } else {
-        Vec::new()
     };
-    let cloth_cols: Vec<interp1d::LineValues> = if ctx.cloth {
+    let wide_columns = || -> Vec<interp1d::LineValues> {
+        if !ctx.cloth {
+            return Vec::new();
+        }
         (0..nx)
             .into_par_iter()
             .with_min_len(1)
             .map(|i| cloth_column(&ctx, i, stop))
             .collect()
-    } else {
-        Vec::new()
     };
+    // the three sets of lines at once, so that one set's last lines overlap the others'
+    // (each line is a pure function of its index: the same values in any schedule)
+    let (rows, (cloth_rows, cloth_cols)) =
+        rayon::join(pair_rows, || rayon::join(narrow_rows, wide_columns));
     let nc = if ctx.cloth { 3 } else { 2 };
     let mut out = Dense {
         channels: nc,
