@@ -133,10 +133,17 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     let vgroove = spec.model.masking == Masking::VGroove;
     let polar = crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking);
     let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
+    // Charlie + Ashikhmin albedo through the cloth kernels (src/table/albedo.rs
+    // `charlie_kernels`, column by column): 1,359 per texel (`sheen-charlie`, 1,391,777
+    // evaluations over 1,024 texels, 2026-11-30; 1,756 with the half-vector kernel alone)
+    let cloth_albedo = crate::table::albedo::uses_kernel(&spec.model)
+        && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
     let albedo = if vgroove {
         2_100.0
     } else if polar_albedo {
         100.0
+    } else if cloth_albedo {
+        1_400.0
     } else {
         1_500.0
     };

@@ -109,11 +109,17 @@ pub fn bake_until(
     } else {
         None
     };
-    let by_column = spec.kind == TableKind::Dfg && dense.is_none();
+    // (cloth albedo tables too: albedo::by_column)
+    let albedo_columns = albedo::by_column(spec);
+    let by_column = (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns;
     let blocks: Vec<Vec<TexelResult>> = if dense.is_some() {
         Vec::new()
     } else if by_column {
-        let column = dfg::column_fn(spec);
+        let column = if albedo_columns {
+            albedo::column_fn(spec)
+        } else {
+            dfg::column_fn(spec)
+        };
         (0..dims[0])
             .into_par_iter()
             .with_min_len(1)
