@@ -52,7 +52,7 @@ use std::cell::RefCell;
 use std::f64::consts::FRAC_PI_2;
 
 /// What the fast path does, as the sidecar's `quadrature.method` states it.
-pub const METHOD: &str = "V-groove masking split into its smooth branches (G = 1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) in closed form: theta_h split at (psi + pi/2)/3 (tan psi = tan theta_v cos phi <= 1), or at pi/2 - psi and psi (tan psi > 1), phi split where tan psi = 1; on each piece a nested Clenshaw-Curtis tensor rule (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes) over phi = pi/2 + c sinh(s), c = min(cot theta_v, 1), and the lobe warp u = asinh(tan theta_h / alpha) up to the exact horizon pi/4 + psi/2, refined one dimension at a time; error estimate per piece and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)), summed over dimensions and pieces (tolerance shared equally among pieces); Beckmann lobes without a diffuse lobe: u cut where the integrand's tail beyond is provably <= 1e-4 of the tolerance (added to the estimate); a texel any of whose pieces does not reach its share within 65x65 nodes, and every texel of a sheen lobe or under a dielectric Fresnel with eta < 1 (whose total-internal-reflection kink the split does not follow), is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2 and at the kinks' meeting points, theta_h split at the kinks, estimate |K15 - G7| summed over panels); f64 accumulation";
+pub const METHOD: &str = "V-groove masking split into its smooth branches (G = 1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h)) in closed form: theta_h split at (psi + pi/2)/3 (tan psi = tan theta_v cos phi <= 1), or at pi/2 - psi and psi (tan psi > 1), phi split where tan psi = 1; on each piece a nested Clenshaw-Curtis tensor rule (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes) over phi = pi/2 + c sinh(s), c = min(cot theta_v, 1), and the lobe warp u = asinh(tan theta_h / alpha) up to the exact horizon pi/4 + psi/2, refined one dimension at a time; error estimate per piece and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)), summed over dimensions and pieces (tolerance shared among the pieces in order: each may use what the pieces before left unspent, divided by the pieces still to come); Beckmann lobes without a diffuse lobe: u cut where the integrand's tail beyond is provably <= 1e-4 of the tolerance (added to the estimate), and the integrand in closed form per piece (D sin(theta_h) dtheta_h = exp(-sinh^2 u) sinh u cosh u / (pi cos theta_h) du, G (v.h) = v.h, 2(n.h)(n.v) or 2(n.h)(n.l) by piece); a texel any of whose pieces does not reach its share within 65x65 nodes, and every texel of a sheen lobe or under a dielectric Fresnel with eta < 1 (whose total-internal-reflection kink the split does not follow), is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2 and at the kinks' meeting points, theta_h split at the kinks, estimate |K15 - G7| summed over panels); f64 accumulation";
 
 const NMAX: usize = (1 << MAX_LEVEL) + 1;
 
@@ -148,13 +148,101 @@ pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
     tol_abs: f64,
     g: F,
 ) -> Result<Estimate<N>, u64> {
+    let w = PhiWarp::new(n_dot_v);
+    let (mu_v, sin_v) = (w.mu_v, w.sin_v);
+    // the integrand per du dφ at (cos φ, u): g times dω_l/(du dφ)
+    let h = |_: Piece, cp: f64, u: f64| -> [f64; N] {
+        let t = alpha * u.sinh();
+        let c2 = 1.0 / (1.0 + t * t);
+        let cos_h = c2.sqrt();
+        let sin_h = t * cos_h;
+        let n = Node::at(mu_v, sin_v, cp, sin_h, cos_h);
+        if n.n_dot_l <= 0.0 || n.v_dot_h <= 0.0 {
+            return [0.0; N];
+        }
+        // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh; dω_l = 4(v·h) dω_h
+        let jac = 4.0 * n.v_dot_h * sin_h * alpha * u.cosh() * c2;
+        let y = g(&n);
+        let mut out = [0.0; N];
+        for k in 0..N {
+            out[k] = y[k] * jac;
+        }
+        out
+    };
+    run_pieces(w, alpha, tail, tol_abs, &h)
+}
+
+/// The directional albedo `∫ f (n·l) dω_l` of a Beckmann lobe (width `alpha`) with the
+/// V-groove term and the Fresnel factor `fresnel(v·h)` (≤ 1; no other lobe), by the V-groove
+/// fast path with the integrand in closed form on each piece (the branch of G is known
+/// there, so no min() is evaluated). With `tan θh = α sinh u`, Beckmann's
+/// `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25) and
+/// `dθh/du = α cosh u cos²θh`,
+///
+/// `D sin θh dθh = exp(−sinh²u) sinh u cosh u/(π cos θh) du`,
+///
+/// and with `f (n·l) dω_l = D G F (v·h)/(n·v) dω_h` (from `dω_l = 4(v·h) dω_h`) the piece's
+/// `G·(v·h)` is `v·h` (G = 1), `2(n·h)(n·v)` (the n·v branch) or `2(n·h)(n·l)` (the n·l
+/// branch; Cook & Torrance 1982, eq. 6). One exponential gives sinh u and cosh u, one more
+/// Beckmann's exp(−sinh²u): the same integral, nodes, pieces and estimate as
+/// [`integrate_over_l_vgroove_cc`] with about half the work per node. `tail` as there.
+pub fn beckmann_vgroove_albedo<Fr: Fn(f64) -> f64>(
+    n_dot_v: f64,
+    alpha: f64,
+    tail: TailCut,
+    tol_abs: f64,
+    fresnel: Fr,
+) -> Result<Estimate<1>, u64> {
+    let w = PhiWarp::new(n_dot_v);
+    let (mu_v, sin_v) = (w.mu_v, w.sin_v);
+    let inv_pi_mu = 1.0 / (std::f64::consts::PI * mu_v);
+    let h = |piece: Piece, cp: f64, u: f64| -> [f64; 1] {
+        // sinh u and cosh u from e^u − 1 (accurate for small u)
+        let em = u.exp_m1();
+        let inv_e = 1.0 / (em + 1.0);
+        let sh = 0.5 * em * (em + 2.0) * inv_e;
+        let ch = sh + inv_e;
+        let t = alpha * sh;
+        let c2 = 1.0 / (1.0 + t * t);
+        let cos_h = c2.sqrt();
+        let sin_h = t * cos_h;
+        let v_dot_h = sin_v * sin_h * cp + mu_v * cos_h;
+        let n_dot_l = 2.0 * v_dot_h * cos_h - mu_v;
+        let d = (-sh * sh).exp();
+        if n_dot_l <= 0.0 || v_dot_h <= 0.0 || d == 0.0 {
+            return [0.0];
+        }
+        // D sin θh dθh/du · F / (n·v), then G·(v·h) of the piece
+        let e = d * sh * ch * fresnel(v_dot_h) * inv_pi_mu;
+        [match piece {
+            Piece::Flat => e * v_dot_h / cos_h,
+            Piece::Middle => 2.0 * e * mu_v,
+            Piece::Outer => 2.0 * e * n_dot_l,
+        }]
+    };
+    run_pieces(w, alpha, tail, tol_abs, &h)
+}
+
+/// The pieces of the V-groove fast path (module docs) for the view `w`, each by its nested
+/// tensor rule over `h(piece, cos φ, u)`, the integrand per du dφ; u beyond `tail.u` left
+/// out and `tail.mass` added to the estimate. The tolerance left after the tail is shared
+/// among the pieces in order: each piece may use what is left divided by the pieces still
+/// to come (an estimate below its share leaves the rest to the later pieces; the sum stays
+/// within `tol_abs`).
+fn run_pieces<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
+    w: PhiWarp,
+    alpha: f64,
+    tail: TailCut,
+    tol_abs: f64,
+    h: &H,
+) -> Result<Estimate<N>, u64> {
     let PhiWarp {
-        mu_v,
-        sin_v,
+        mu_v: _,
+        sin_v: _,
         tan_v,
         c,
         big_s,
-    } = PhiWarp::new(n_dot_v);
+    } = w;
     // φ panels in s: split where tan ψ = 1 (cos φ = 1/tan θv), left of it ψ > π/4
     let mut panels: Vec<(f64, f64, &[Piece])> = Vec::with_capacity(2);
     const TWO: &[Piece] = &[Piece::Flat, Piece::Outer];
@@ -168,27 +256,18 @@ pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
         panels.push((-big_s, big_s, TWO));
     }
     let n_pieces: usize = panels.iter().map(|p| p.2.len()).sum();
-    let tol_piece = (tol_abs - tail.mass) / n_pieces as f64;
+    let tol_pieces = tol_abs - tail.mass;
     let mut total = Estimate::<N>::zero();
     total.error = [tail.mass; N];
     let mut spent = 0u64;
+    // tolerance used so far (largest channel) and pieces done
+    let (mut used, mut done) = (0.0f64, 0usize);
     for &(s0, s1, pieces) in &panels {
         for &piece in pieces {
+            let tol_piece = (tol_pieces - used) / (n_pieces - done) as f64;
             let r = SCRATCH.with(|sc| {
                 let sc = &mut *sc.borrow_mut();
-                let lobe = (alpha, tail.u);
-                piece_rule(
-                    sc,
-                    mu_v,
-                    sin_v,
-                    tan_v,
-                    c,
-                    (s0, s1),
-                    piece,
-                    lobe,
-                    tol_piece,
-                    &g,
-                )
+                piece_rule(sc, tan_v, c, (s0, s1), piece, (alpha, tail.u), tol_piece, h)
             });
             match r {
                 Ok(e) => {
@@ -196,6 +275,8 @@ pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
                         total.value[k] += e.value[k];
                         total.error[k] += e.error[k];
                     }
+                    used += e.error.iter().fold(0.0f64, |a, &b| a.max(b));
+                    done += 1;
                     spent += e.evals;
                 }
                 Err(n) => return Err(spent + n),
@@ -207,19 +288,18 @@ pub fn integrate_over_l_vgroove_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
 }
 
 /// One piece's tensor rule over `s ∈ [s0, s1]` (φ = π/2 + c sinh s, doubled by mirror
-/// symmetry) and the piece's u range, through [`refine`].
+/// symmetry) and the piece's u range, through [`refine`]; `h(piece, cos φ, u)` is the
+/// integrand per du dφ.
 #[allow(clippy::too_many_arguments)]
-fn piece_rule<const N: usize, F: Fn(&Node) -> [f64; N]>(
+fn piece_rule<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
     sc: &mut Scratch,
-    mu_v: f64,
-    sin_v: f64,
     tan_v: f64,
     c: f64,
     (s0, s1): (f64, f64),
     piece: Piece,
     (alpha, cap): (f64, f64),
     tol: f64,
-    g: &F,
+    h: &H,
 ) -> Result<Estimate<N>, u64> {
     let r = rules();
     sc.reset(N);
@@ -250,22 +330,7 @@ fn piece_rule<const N: usize, F: Fn(&Node) -> [f64; N]>(
             if old_stride == 0 || j % old_stride != 0 {
                 let out = &mut sc.vals[base + j * N..base + j * N + N];
                 if half > 0.0 {
-                    let u = u0 + half * (1.0 - r.x[j]);
-                    let t = alpha * u.sinh();
-                    let c2 = 1.0 / (1.0 + t * t);
-                    let cos_h = c2.sqrt();
-                    let sin_h = t * cos_h;
-                    let n = Node::at(mu_v, sin_v, cp, sin_h, cos_h);
-                    if n.n_dot_l <= 0.0 || n.v_dot_h <= 0.0 {
-                        out.fill(0.0);
-                    } else {
-                        // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh; dω_l = 4(v·h) dω_h
-                        let jac = 4.0 * n.v_dot_h * sin_h * alpha * u.cosh() * c2;
-                        let y = g(&n);
-                        for k in 0..N {
-                            out[k] = y[k] * jac;
-                        }
-                    }
+                    out.copy_from_slice(&h(piece, cp, u0 + half * (1.0 - r.x[j])));
                     *evals += 1;
                 } else {
                     // an empty piece (its ends met at a panel end): nothing to evaluate

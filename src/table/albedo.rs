@@ -6,7 +6,7 @@ use super::{TableKind, TableSpec, TexelResult};
 use crate::integrate::dfg_kernel::{Column, SheenCache};
 use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
 use crate::integrate::tensor::integrate_over_l_smooth;
-use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
+use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::integrate::{integrate, Tolerance};
 use crate::integrate::{sheen_l, sheen_wide};
 use crate::model::{Brdf, Masking};
@@ -64,10 +64,29 @@ fn directional_albedo_in(
         let Some(tail) = vgroove_fast_path(s, brdf.diffuse_weight, tol) else {
             return directional_albedo_adaptive(brdf, mu, tol);
         };
+        let mut spent = 0;
+        // a Beckmann lobe alone: the closed-form piece integrand (the tail cut is its sign)
+        if s.ndf.kind() == crate::model::NdfKind::Beckmann && tail != TailCut::NONE && mu > 0.0 {
+            use crate::model::fresnel::{dielectric_one_division, Fresnel};
+            let alpha = s.ndf.alpha();
+            // (inside the kernel 0 < v·h ≤ 1; η ≥ 1 here: vgroove_fast_path refuses η < 1)
+            let r = match s.fresnel {
+                Fresnel::Dielectric { eta } if eta >= 1.0 => {
+                    let f = |c: f64| dielectric_one_division(c.clamp(0.0, 1.0), eta);
+                    beckmann_vgroove_albedo(mu, alpha, tail, tol, f)
+                }
+                fr => beckmann_vgroove_albedo(mu, alpha, tail, tol, |c: f64| fr.eval(c)),
+            };
+            match r {
+                Ok(e) => return (e.value, e.error, e.evals),
+                Err(n) => spent = n,
+            }
+        }
         let wd = brdf.diffuse_weight / PI;
-        let e = integrate_over_l_kinked(mu, s.warp(), tail, tol, |n| {
+        let mut e = integrate_over_l_kinked(mu, s.warp(), tail, tol, |n| {
             [s.cosine_weighted(n) + wd * n.n_dot_l]
         });
+        e.evals += spent;
         return (e.value, e.error, e.evals);
     }
     let mut spent = 0;
