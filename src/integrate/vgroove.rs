@@ -84,7 +84,7 @@ fn switches(s: f64, tan_max: f64) -> ([f64; 2], usize) {
 
 /// The ends `(u_lo, u_hi)` of piece `p` for `tan ψ = s`, lobe scale α and horizon `tan_max`,
 /// none beyond `cap`.
-#[inline]
+#[cfg(test)]
 fn piece_ends(p: Piece, s: f64, alpha: f64, tan_max: f64, cap: f64) -> (f64, f64) {
     let (t, n) = switches(s, tan_max);
     let u = |tan_th: f64| (tan_th / alpha).asinh();
@@ -98,6 +98,31 @@ fn piece_ends(p: Piece, s: f64, alpha: f64, tan_max: f64, cap: f64) -> (f64, f64
         }
         Piece::Outer => (u(t[n - 1]).min(umax), umax),
     }
+}
+
+/// The ends of every piece for `tan ψ = s` (indexed as [`Piece`]: Flat, Middle, Outer), the
+/// same values as [`piece_ends`] gives one by one, with each asinh computed once.
+#[inline]
+fn all_piece_ends(s: f64, alpha: f64, tan_max: f64, cap: f64) -> [(f64, f64); 3] {
+    let (t, n) = switches(s, tan_max);
+    let u = |tan_th: f64| (tan_th / alpha).asinh();
+    let umax = u(tan_max).min(cap);
+    let u0 = u(t[0]).min(cap).min(umax);
+    let u1 = if n == 2 { u(t[1]).min(cap) } else { u0 };
+    [
+        (0.0, u0),
+        (u0, u1.clamp(u0, umax)),
+        (if n == 2 { u1.min(umax) } else { u0 }, umax),
+    ]
+}
+
+/// A φ node's data, shared by the pieces of its panel: cos φ, dφ/dx (×2 for the mirror
+/// half) and every piece's u range.
+#[derive(Clone, Copy)]
+struct PhiNode {
+    cp: f64,
+    dphi_dx: f64,
+    ends: [(f64, f64); 3],
 }
 
 /// Where a lobe's tail may be left out: over the half vectors with
@@ -263,11 +288,14 @@ fn run_pieces<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
     // tolerance used so far (largest channel) and pieces done
     let (mut used, mut done) = (0.0f64, 0usize);
     for &(s0, s1, pieces) in &panels {
+        // the φ nodes of this panel, filled as the pieces' rules ask for them
+        let mut nodes: [Option<PhiNode>; NMAX] = [None; NMAX];
         for &piece in pieces {
             let tol_piece = (tol_pieces - used) / (n_pieces - done) as f64;
             let r = SCRATCH.with(|sc| {
                 let sc = &mut *sc.borrow_mut();
-                piece_rule(sc, tan_v, c, (s0, s1), piece, (alpha, tail.u), tol_piece, h)
+                let at = (tan_v, c, (s0, s1), &mut nodes);
+                piece_rule(sc, at, piece, (alpha, tail.u), tol_piece, h)
             });
             match r {
                 Ok(e) => {
@@ -293,9 +321,7 @@ fn run_pieces<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
 #[allow(clippy::too_many_arguments)]
 fn piece_rule<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
     sc: &mut Scratch,
-    tan_v: f64,
-    c: f64,
-    (s0, s1): (f64, f64),
+    (tan_v, c, (s0, s1), nodes): (f64, f64, (f64, f64), &mut [Option<PhiNode>; NMAX]),
     piece: Piece,
     (alpha, cap): (f64, f64),
     tol: f64,
@@ -309,13 +335,19 @@ fn piece_rule<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
         if have != usize::MAX && have >= ku {
             return;
         }
-        let s = s_mid + s_half * r.x[i];
-        let phi = FRAC_PI_2 + c * s.sinh();
-        let cp = phi.cos();
-        // dφ/dx = c cosh(s)·s_half; ×2 for φ ∈ [0, π] standing for the whole circle
-        let dphi_dx = 2.0 * c * s.cosh() * s_half;
-        let tan_max = tan_theta_h_max(tan_v, cp);
-        let (u0, u1) = piece_ends(piece, tan_v * cp, alpha, tan_max, cap);
+        let PhiNode { cp, dphi_dx, ends } = *nodes[i].get_or_insert_with(|| {
+            let s = s_mid + s_half * r.x[i];
+            let phi = FRAC_PI_2 + c * s.sinh();
+            let cp = phi.cos();
+            let tan_max = tan_theta_h_max(tan_v, cp);
+            PhiNode {
+                cp,
+                // dφ/dx = c cosh(s)·s_half; ×2 for φ ∈ [0, π] standing for the whole circle
+                dphi_dx: 2.0 * c * s.cosh() * s_half,
+                ends: all_piece_ends(tan_v * cp, alpha, tan_max, cap),
+            }
+        });
+        let (u0, u1) = ends[piece as usize];
         let half = 0.5 * (u1 - u0);
         sc.scale[i] = half * dphi_dx;
         let stride = 1usize << (MAX_LEVEL - ku);
@@ -403,6 +435,17 @@ mod tests {
                 let mut prev = 0.0;
                 for &p in pieces {
                     let (u0, u1) = piece_ends(p, s, alpha, tan_max, f64::INFINITY);
+                    // the shared form gives the same bits, with a cap inside or not
+                    assert_eq!(
+                        all_piece_ends(s, alpha, tan_max, f64::INFINITY)[p as usize],
+                        (u0, u1)
+                    );
+                    for cap in [0.3, 1.0, 2.0] {
+                        assert_eq!(
+                            all_piece_ends(s, alpha, tan_max, cap)[p as usize],
+                            piece_ends(p, s, alpha, tan_max, cap)
+                        );
+                    }
                     assert!(u0 == prev && u1 >= u0, "mu={mu} phi={phi} {p:?}");
                     prev = u1;
                     for m in 1..200 {
