@@ -230,9 +230,10 @@ pub fn beckmann_vgroove_albedo<Fr: Fn(f64) -> f64>(
         let t = alpha * sh;
         let c2 = 1.0 / (1.0 + t * t);
         let cos_h = c2.sqrt();
-        let sin_h = t * cos_h;
-        let v_dot_h = sin_v * sin_h * cp + mu_v * cos_h;
-        let n_dot_l = 2.0 * v_dot_h * cos_h - mu_v;
+        // v·h = cos θh (n·v + sin θv tan θh cos φ) and n·l = 2(v·h)(n·h) − n·v
+        let vh_over_cos = mu_v + sin_v * t * cp;
+        let v_dot_h = cos_h * vh_over_cos;
+        let n_dot_l = 2.0 * c2 * vh_over_cos - mu_v;
         let d = (-sh * sh).exp();
         if n_dot_l <= 0.0 || v_dot_h <= 0.0 || d == 0.0 {
             return [0.0];
@@ -240,7 +241,7 @@ pub fn beckmann_vgroove_albedo<Fr: Fn(f64) -> f64>(
         // D sin θh dθh/du · F / (n·v), then G·(v·h) of the piece
         let e = d * sh * ch * fresnel(v_dot_h) * inv_pi_mu;
         [match piece {
-            Piece::Flat => e * v_dot_h / cos_h,
+            Piece::Flat => e * vh_over_cos,
             Piece::Middle => 2.0 * e * mu_v,
             Piece::Outer => 2.0 * e * n_dot_l,
         }]
@@ -270,8 +271,8 @@ fn run_pieces<const N: usize, H: Fn(Piece, f64, f64) -> [f64; N]>(
     } = w;
     // φ panels in s: split where tan ψ = 1 (cos φ = 1/tan θv), left of it ψ > π/4
     let mut panels: Vec<(f64, f64, &[Piece])> = Vec::with_capacity(2);
-    const TWO: &[Piece] = &[Piece::Flat, Piece::Outer];
-    const THREE: &[Piece] = &[Piece::Flat, Piece::Middle, Piece::Outer];
+    const TWO: &[Piece] = &[Piece::Outer, Piece::Flat];
+    const THREE: &[Piece] = &[Piece::Outer, Piece::Middle, Piece::Flat];
     if tan_v > 1.0 {
         let phi_star = (1.0 / tan_v).acos();
         let s_star = ((phi_star - FRAC_PI_2) / c).asinh();
