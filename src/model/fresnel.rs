@@ -172,11 +172,13 @@ mod tests {
     }
 
     /// The one-division form equals the three-division one to rounding (a few operations
-    /// on numbers ≤ ~η²: 1e-15 relative) over c ∈ [0, 1] and η ∈ [1, 4], ends included.
+    /// on numbers ≤ ~η²: 1e-15 relative) over c ∈ [0, 1] and η ∈ [1, 4], ends included
+    /// (except c = 0 at η = 1, where g = c = 0 makes both forms 0/0: no interface, and a
+    /// grazing direction the kernels never evaluate there).
     #[test]
     fn one_division_dielectric_matches() {
         for &eta in &[1.0f64, 1.0001, 1.33, 1.5, 2.4, 4.0] {
-            for i in 0..=1000 {
+            for i in (eta == 1.0) as usize..=1000 {
                 let c = i as f64 / 1000.0;
                 let (a, b) = (dielectric(c, eta), dielectric_one_division(c, eta));
                 assert!(
