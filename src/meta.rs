@@ -274,7 +274,20 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         }
         _ => false,
     };
-    let method = if kernel {
+    let charlie_albedo = matches!(
+        spec.kind,
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty
+    ) && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
+    let method = if kernel && charlie_albedo {
+        // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
+        // (src/table/albedo.rs `charlie_kernels`)
+        format!(
+            "Charlie/Ashikhmin cloth kernels: alpha < 1/16 first {}; 1/16 <= alpha <= 1 first {}; where those fail: {}. Generic path: {method}",
+            crate::integrate::sheen_l::METHOD,
+            crate::integrate::sheen_wide::METHOD,
+            crate::integrate::dfg_kernel::METHOD
+        )
+    } else if kernel {
         format!(
             "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
             crate::integrate::ggx_polar::METHOD,

@@ -17,7 +17,10 @@
 mod reference;
 
 use brdfbake::integrate::hemisphere::Node;
-use brdfbake::integrate::vgroove::{integrate_over_l_kinked, integrate_over_l_vgroove_cc, TailCut};
+use brdfbake::integrate::vgroove::{
+    beckmann_vgroove_albedo, integrate_over_l_kinked, integrate_over_l_vgroove_cc, TailCut,
+};
+use brdfbake::model::fresnel::dielectric_one_division;
 use brdfbake::model::{Brdf, Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::albedo::directional_albedo;
 use rayon::prelude::*;
@@ -65,10 +68,14 @@ fn assert_none(what: &str, failures: &[String]) {
 
 /// The `cook-torrance-1982` preset's `albedo` table (Beckmann, Cook–Torrance m = α at 32
 /// endpoints in [0.05, 1], V-groove, dielectric Fresnel η = 1.5, n·v at 32 texel centres):
-/// every one of its 1,024 texels takes the fast path (`Ok`: no texel falls back to the
-/// adaptive integrator, which would cost ~100× more), and at a 6×6 subset — the grazing
-/// column, the narrowest lobe and the normal view included — the value is within the
-/// estimate of the reference and within `LIB_TOL`.
+/// every one of its 1,024 texels takes the closed-form kernel (`beckmann_vgroove_albedo`:
+/// `Ok`, no texel falls back to the adaptive integrator, which would cost ~100× more) and
+/// the table driver returns its result bit for bit; at every texel the kernel agrees with
+/// the fast path on the generic integrand (the library's D, G = min(…) and Fresnel at
+/// each node: a different formula for the same integral on the same nodes) within the sum
+/// of both estimates (each claims to bound its own error); and at an 8×8 subset — the
+/// grazing column, the narrowest lobe and the normal view included — the kernel's value
+/// is within its estimate of the independent reference and within `LIB_TOL`.
 #[test]
 fn cook_torrance_albedo_takes_the_fast_path_and_matches_reference() {
     let n = 32;
@@ -81,33 +88,46 @@ fn cook_torrance_albedo_takes_the_fast_path_and_matches_reference() {
         .iter()
         .flat_map(|&m| mus.iter().map(move |&mu| (mu, m)))
         .collect();
+    let tail = TailCut::beckmann_vgroove(1e-4 * LIB_TOL);
     let results: Vec<Result<[f64; 2], String>> = texels
         .par_iter()
         .map(|&(mu, m)| {
+            // (the Fresnel form the table driver passes for a dielectric with η ≥ 1)
+            let f = |c: f64| dielectric_one_division(c.clamp(0.0, 1.0), 1.5);
+            let kernel = beckmann_vgroove_albedo(mu, m, tail, LIB_TOL, f)
+                .map_err(|spent| format!("mu={mu} m={m}: fell back after {spent} evaluations"))?;
             let s = specular(NdfKind::Beckmann, m, fresnel);
-            let tail = TailCut::beckmann_vgroove(1e-4 * LIB_TOL);
-            integrate_over_l_vgroove_cc(mu, m, tail, LIB_TOL, |nd: &Node| [s.cosine_weighted(nd)])
-                .map(|e| [e.value[0], e.error[0]])
-                .map_err(|spent| format!("mu={mu} m={m}: fell back after {spent} evaluations"))
+            let generic = integrate_over_l_vgroove_cc(mu, m, tail, LIB_TOL, |nd: &Node| {
+                [s.cosine_weighted(nd)]
+            })
+            .map_err(|spent| format!("mu={mu} m={m}: generic fast path fell back after {spent}"))?;
+            let d = (kernel.value[0] - generic.value[0]).abs();
+            if d > kernel.error[0] + generic.error[0] + 1e-15 {
+                return Err(format!(
+                    "mu={mu} m={m}: kernel {} ± {:e}, generic integrand {} ± {:e}",
+                    kernel.value[0], kernel.error[0], generic.value[0], generic.error[0]
+                ));
+            }
+            Ok([kernel.value[0], kernel.error[0]])
         })
         .collect();
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.clone().err()).collect();
     // and the table driver uses the same path: its value is bit-identical
-    for &(i, j) in &[(0usize, 0usize), (13, 7), (31, 31)] {
+    for (k, &(mu, m)) in texels.iter().enumerate() {
         let brdf = Brdf {
-            specular: Some(specular(NdfKind::Beckmann, ms[j], fresnel)),
+            specular: Some(specular(NdfKind::Beckmann, m, fresnel)),
             diffuse_weight: 0.0,
         };
-        let (v, e, _) = directional_albedo(&brdf, mus[i], LIB_TOL);
-        if let Ok(r) = &results[j * n + i] {
+        let (v, e, _) = directional_albedo(&brdf, mu, LIB_TOL);
+        if let Ok(r) = &results[k] {
             if [v[0], e[0]] != *r {
                 failures.push(format!(
-                    "texel ({i},{j}): table driver {v:?} ± {e:?}, fast path {r:?}"
+                    "mu={mu} m={m}: table driver {v:?} ± {e:?}, kernel {r:?}"
                 ));
             }
         }
     }
-    let subset = [0usize, 6, 12, 19, 25, 31];
+    let subset = [0usize, 1, 6, 12, 19, 25, 30, 31];
     let pts: Vec<(usize, usize)> = subset
         .iter()
         .flat_map(|&j| subset.map(|i| (i, j)))
@@ -132,6 +152,46 @@ fn cook_torrance_albedo_takes_the_fast_path_and_matches_reference() {
             .collect::<Vec<_>>(),
     );
     assert_none("cook-torrance albedo", &failures);
+}
+
+/// The closed-form kernel with the other Fresnel factors it takes (none, Schlick, a
+/// conductor) and at the preset's corners, against the independent reference: within the
+/// kernel's estimate plus the reference's, and within `LIB_TOL`.
+#[test]
+fn beckmann_vgroove_kernel_matches_reference_for_every_fresnel() {
+    let tail = TailCut::beckmann_vgroove(1e-4 * LIB_TOL);
+    let mut pts = Vec::new();
+    for fresnel in [
+        Fresnel::None,
+        Fresnel::Schlick { f0: 0.04 },
+        Fresnel::Conductor { eta: 0.2, k: 3.0 },
+    ] {
+        for &alpha in &[0.05, 1.0] {
+            for &mu in &[0.01, 0.72, 1.0] {
+                pts.push((fresnel, alpha, mu));
+            }
+        }
+    }
+    let failures: Vec<String> = pts
+        .par_iter()
+        .filter_map(|&(fresnel, alpha, mu)| {
+            let e = match beckmann_vgroove_albedo(mu, alpha, tail, LIB_TOL, |c| fresnel.eval(c)) {
+                Ok(e) => e,
+                Err(n) => return Some(format!("{fresnel:?} alpha={alpha} mu={mu}: fell back after {n}")),
+            };
+            let (want, ref_err) = reference_albedo(NdfKind::Beckmann, alpha, mu, |vh| match fresnel {
+                Fresnel::None => 1.0,
+                Fresnel::Schlick { f0 } => f0 + (1.0 - f0) * reference::fc(vh),
+                Fresnel::Conductor { eta, k } => reference::fresnel_conductor(vh, eta, k),
+                Fresnel::Dielectric { eta } => reference::fresnel_dielectric(vh, eta),
+            });
+            let d = (e.value[0] - want).abs();
+            (d > e.error[0] + ref_err + 1e-15 || d > LIB_TOL).then(|| {
+                format!("{fresnel:?} alpha={alpha} mu={mu}: {} vs reference {want}: |error| {d:e}, estimate {:e}", e.value[0], e.error[0])
+            })
+        })
+        .collect();
+    assert_none("closed-form V-groove kernel", &failures);
 }
 
 /// Other lobes through the library's albedo entry point (fast path or, where a piece does

@@ -3,12 +3,15 @@
 //! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
 
 use super::{TableKind, TableSpec, TexelResult};
+use crate::integrate::dfg_kernel::{Column, SheenCache};
 use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
 use crate::integrate::tensor::integrate_over_l_smooth;
-use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
+use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::integrate::{integrate, Tolerance};
+use crate::integrate::{sheen_l, sheen_wide};
 use crate::model::{Brdf, Masking};
 use rayon::prelude::*;
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// One BRDF per roughness texel, with any lazily built numeric G1 forced now (in parallel,
@@ -40,6 +43,18 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
 /// ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
 /// V-groove term's kinks go to the adaptive one directly.
 pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
+    directional_albedo_in(brdf, mu, tol, None)
+}
+
+/// [`directional_albedo`] with, for the cloth kernels, the view data and shared node data
+/// of a table column (`col.mu()` must be `mu`): the same result, bit for bit (every shared
+/// entry is a pure function of μ and its node).
+fn directional_albedo_in(
+    brdf: &Brdf,
+    mu: f64,
+    tol: f64,
+    column: Option<(&Column, &RefCell<SheenCache>)>,
+) -> ([f64; 1], [f64; 1], u64) {
     let kinked = brdf
         .specular
         .as_ref()
@@ -49,10 +64,29 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
         let Some(tail) = vgroove_fast_path(s, brdf.diffuse_weight, tol) else {
             return directional_albedo_adaptive(brdf, mu, tol);
         };
+        let mut spent = 0;
+        // a Beckmann lobe alone: the closed-form piece integrand (the tail cut is its sign)
+        if s.ndf.kind() == crate::model::NdfKind::Beckmann && tail != TailCut::NONE && mu > 0.0 {
+            use crate::model::fresnel::{dielectric_one_division, Fresnel};
+            let alpha = s.ndf.alpha();
+            // (inside the kernel 0 < v·h ≤ 1; η ≥ 1 here: vgroove_fast_path refuses η < 1)
+            let r = match s.fresnel {
+                Fresnel::Dielectric { eta } if eta >= 1.0 => {
+                    let f = |c: f64| dielectric_one_division(c.clamp(0.0, 1.0), eta);
+                    beckmann_vgroove_albedo(mu, alpha, tail, tol, f)
+                }
+                fr => beckmann_vgroove_albedo(mu, alpha, tail, tol, |c: f64| fr.eval(c)),
+            };
+            match r {
+                Ok(e) => return (e.value, e.error, e.evals),
+                Err(n) => spent = n,
+            }
+        }
         let wd = brdf.diffuse_weight / PI;
-        let e = integrate_over_l_kinked(mu, s.warp(), tail, tol, |n| {
+        let mut e = integrate_over_l_kinked(mu, s.warp(), tail, tol, |n| {
             [s.cosine_weighted(n) + wd * n.n_dot_l]
         });
+        e.evals += spent;
         return (e.value, e.error, e.evals);
     }
     let mut spent = 0;
@@ -90,7 +124,7 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
     if let Some(s) = brdf.specular.as_ref().filter(|s| {
         brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
     }) {
-        use crate::integrate::dfg_kernel::{charlie_sheen, ggx_split_sum, Column};
+        use crate::integrate::dfg_kernel::ggx_split_sum;
         use crate::model::NdfKind;
         if let Some(smith) = super::dfg::kernel_smith(s) {
             match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
@@ -108,7 +142,11 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
                 Err(n) => spent += n,
             }
         } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
-            match charlie_sheen(&Column::new(mu), s.ndf.alpha(), tol) {
+            let r = match column {
+                Some((col, cache)) => charlie_kernels(col, Some(cache), s.ndf.alpha(), tol),
+                None => charlie_kernels(&Column::new(mu), None, s.ndf.alpha(), tol),
+            };
+            match r {
                 Ok(e) => return (e.value, e.error, e.evals),
                 Err(n) => spent = n,
             }
@@ -120,6 +158,85 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
         [s + wd * n.n_dot_l]
     });
     (e.value, e.error, e.evals + spent)
+}
+
+/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `col.mu()` by the
+/// cloth kernels, as the `filament-dfg` cloth channel computes it: in light-direction
+/// coordinates first — [`sheen_l`] for α < [`sheen_l::MAX_ALPHA`], [`sheen_wide`] for
+/// α up to 1 (with the column's shared node data where `cache` is given) —, then, where
+/// that does not reach `tol`, the half-vector kernel
+/// ([`charlie_sheen_shared`](crate::integrate::dfg_kernel::charlie_sheen_shared));
+/// `Err(evaluations spent)` if neither does (the caller falls back to the generic path).
+/// The same bits with or without `cache`.
+pub(crate) fn charlie_kernels(
+    col: &Column,
+    cache: Option<&RefCell<SheenCache>>,
+    alpha: f64,
+    tol: f64,
+) -> Result<crate::integrate::Estimate<1>, u64> {
+    let mu = col.mu();
+    let first = if alpha < sheen_l::MAX_ALPHA {
+        Some(sheen_l::charlie_sheen_l(mu, alpha, tol))
+    } else if alpha <= sheen_wide::MAX_ALPHA {
+        Some(match cache {
+            Some(c) => sheen_wide::charlie_sheen_wide_shared(mu, alpha, tol, c.borrow_mut().wide()),
+            None => sheen_wide::charlie_sheen_wide(mu, alpha, tol),
+        })
+    } else {
+        None
+    };
+    let spent = match first {
+        Some(Ok(e)) => return Ok(e),
+        Some(Err(n)) => n,
+        None => 0,
+    };
+    match crate::integrate::dfg_kernel::charlie_sheen_shared(col, cache, alpha, tol) {
+        Ok(mut e) => {
+            e.evals += spent;
+            Ok(e)
+        }
+        Err(n) => Err(n + spent),
+    }
+}
+
+/// Whether an albedo table is baked column by column ([`column_fn`]): Charlie/Ashikhmin
+/// lobes with F = 1 and no diffuse lobe, whose cloth kernels share node data between the
+/// roughnesses of a column (one view μ).
+pub(crate) fn by_column(spec: &TableSpec) -> bool {
+    use crate::model::NdfKind;
+    spec.kind == TableKind::Albedo
+        && uses_kernel(&spec.model)
+        && spec.model.ndf == Some(NdfKind::Charlie)
+}
+
+/// The texels of one column (one view μ, every roughness, in axis-1 order) of a table for
+/// which [`by_column`] holds: the view data ([`Column`]) and the cloth kernels' shared node
+/// data ([`SheenCache`]) built once for the column; each value is the same, bit for bit,
+/// as [`texel_fn`] computes it alone.
+pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResult> + Sync> {
+    let brdfs = brdfs_per_roughness(spec);
+    let axes = spec.axes.clone();
+    let tol = spec.tolerance;
+    Box::new(move |i0| {
+        let mu = axes[0].coord(i0);
+        let col = Column::new(mu);
+        let cache = RefCell::new(SheenCache::default());
+        brdfs
+            .iter()
+            .map(|b| {
+                let (v, e, n) = if mu > 0.0 {
+                    directional_albedo_in(b, mu, tol, Some((&col, &cache)))
+                } else {
+                    directional_albedo(b, mu, tol)
+                };
+                TexelResult {
+                    value: v.to_vec(),
+                    error: e.to_vec(),
+                    evals: n,
+                }
+            })
+            .collect()
+    })
 }
 
 /// Whether the V-groove fast path ([`integrate_over_l_kinked`]) may take this lobe, and the

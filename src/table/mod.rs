@@ -115,7 +115,9 @@ pub fn bake_until(
     } else {
         None
     };
-    let by_column = spec.kind == TableKind::Dfg && dense.is_none();
+    // (cloth albedo tables too: albedo::by_column)
+    let albedo_columns = albedo::by_column(spec);
+    let by_column = (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns;
     // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
     // i + j·nx holds the fibre's texels in slice order
     let fibre = if by_column || dense.is_some() {
@@ -137,7 +139,11 @@ pub fn bake_until(
             })
             .collect()
     } else if by_column {
-        let column = dfg::column_fn(spec);
+        let column = if albedo_columns {
+            albedo::column_fn(spec)
+        } else {
+            dfg::column_fn(spec)
+        };
         (0..dims[0])
             .into_par_iter()
             .with_min_len(1)
