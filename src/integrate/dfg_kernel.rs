@@ -43,7 +43,7 @@
 use super::adaptive::Estimate;
 use super::hemisphere::tan_theta_h_max;
 use super::tensor::{rules as cc_rules, PhiWarp, MAX_LEVEL};
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 
 const NMAX: usize = (1 << MAX_LEVEL) + 1;
@@ -55,6 +55,45 @@ const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
 
 /// What the kernels do, for the sidecar's `quadrature.method`.
 pub const METHOD: &str = "specialised kernels for the GGX split sum (Smith height-correlated or separable masking) and the Charlie/Ashikhmin cloth channel (src/integrate/dfg_kernel.rs): the nested Clenshaw-Curtis tensor rule of the generic fast path (same coordinates, warps, levels and error estimate) with the integrand in closed form (GGX: D (n.h) dw_h = sinh u/(pi cosh^3 u) du dphi, tan theta_h = alpha sinh u) and the per-view setup shared by a table column; a texel whose estimate does not reach the tolerance goes to the generic path";
+
+/// One view's data for the kernels that share it along a table column — the φ-node setup
+/// ([`Column`]) and the cloth kernels' node data ([`SheenCache`]) — built on first use and
+/// then shared by every texel at that view. The kernels tried first (the polar split sum,
+/// sheen_l for narrow cloth lobes) need neither, and building them would cost more than
+/// some of those texels (the cache alone zeroes 266 KB). The results are the same bits
+/// with or without them.
+pub struct View {
+    /// The view cosine, at most 1 (as [`Column::mu`] has it).
+    mu: f64,
+    col: OnceCell<Column>,
+    cache: OnceCell<RefCell<SheenCache>>,
+}
+
+impl View {
+    /// For view cosine `mu` (values above 1 are taken as 1).
+    pub fn new(mu: f64) -> View {
+        View {
+            mu: mu.min(1.0),
+            col: OnceCell::new(),
+            cache: OnceCell::new(),
+        }
+    }
+
+    /// The view cosine (at most 1).
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// The view's [`Column`], built on the first call.
+    pub fn column(&self) -> &Column {
+        self.col.get_or_init(|| Column::new(self.mu))
+    }
+
+    /// The cloth kernels' node data for this view, created (empty) on the first call.
+    pub fn cache(&self) -> &RefCell<SheenCache> {
+        self.cache.get_or_init(Default::default)
+    }
+}
 
 /// Everything that depends on the view μ alone, at the finest φ level: shared by every
 /// roughness of a table column.

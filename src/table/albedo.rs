@@ -3,7 +3,7 @@
 //! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
 
 use super::{TableKind, TableSpec, TexelResult};
-use crate::integrate::dfg_kernel::{Column, SheenCache};
+use crate::integrate::dfg_kernel::{Column, View};
 use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
@@ -11,7 +11,6 @@ use crate::integrate::{integrate, Tolerance};
 use crate::integrate::{sheen_l, sheen_wide};
 use crate::model::{Brdf, Masking};
 use rayon::prelude::*;
-use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// One BRDF per roughness texel, with any lazily built numeric G1 forced now (in parallel,
@@ -47,13 +46,13 @@ pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1]
 }
 
 /// [`directional_albedo`] with, for the cloth kernels, the view data and shared node data
-/// of a table column (`col.mu()` must be `mu`): the same result, bit for bit (every shared
+/// of a table column (`view.mu()` must be `mu`): the same result, bit for bit (every shared
 /// entry is a pure function of μ and its node).
 fn directional_albedo_in(
     brdf: &Brdf,
     mu: f64,
     tol: f64,
-    column: Option<(&Column, &RefCell<SheenCache>)>,
+    view: Option<&View>,
 ) -> ([f64; 1], [f64; 1], u64) {
     let kinked = brdf
         .specular
@@ -142,9 +141,9 @@ fn directional_albedo_in(
                 Err(n) => spent += n,
             }
         } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
-            let r = match column {
-                Some((col, cache)) => charlie_kernels(col, Some(cache), s.ndf.alpha(), tol),
-                None => charlie_kernels(&Column::new(mu), None, s.ndf.alpha(), tol),
+            let r = match view {
+                Some(v) => charlie_kernels(v, s.ndf.alpha(), tol),
+                None => charlie_kernels(&View::new(mu), s.ndf.alpha(), tol),
             };
             match r {
                 Ok(e) => return (e.value, e.error, e.evals),
@@ -160,28 +159,30 @@ fn directional_albedo_in(
     (e.value, e.error, e.evals + spent)
 }
 
-/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `col.mu()` by the
-/// cloth kernels, as the `filament-dfg` cloth channel computes it: in light-direction
+/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by
+/// the cloth kernels, as the `filament-dfg` cloth channel computes it: in light-direction
 /// coordinates first — [`sheen_l`] for α < [`sheen_l::MAX_ALPHA`], [`sheen_wide`] for
-/// α up to 1 (with the column's shared node data where `cache` is given) —, then, where
-/// that does not reach `tol`, the half-vector kernel
+/// α up to 1 (with the view's shared node data) —, then, where that does not reach `tol`,
+/// the half-vector kernel
 /// ([`charlie_sheen_shared`](crate::integrate::dfg_kernel::charlie_sheen_shared));
 /// `Err(evaluations spent)` if neither does (the caller falls back to the generic path).
-/// The same bits with or without `cache`.
+/// The same bits whether `view` is shared by a column or the texel's own.
 pub(crate) fn charlie_kernels(
-    col: &Column,
-    cache: Option<&RefCell<SheenCache>>,
+    view: &View,
     alpha: f64,
     tol: f64,
 ) -> Result<crate::integrate::Estimate<1>, u64> {
-    let mu = col.mu();
+    let mu = view.mu();
     let first = if alpha < sheen_l::MAX_ALPHA {
         Some(sheen_l::charlie_sheen_l(mu, alpha, tol))
     } else if alpha <= sheen_wide::MAX_ALPHA {
-        Some(match cache {
-            Some(c) => sheen_wide::charlie_sheen_wide_shared(mu, alpha, tol, c.borrow_mut().wide()),
-            None => sheen_wide::charlie_sheen_wide(mu, alpha, tol),
-        })
+        let mut cache = view.cache().borrow_mut();
+        Some(sheen_wide::charlie_sheen_wide_shared(
+            mu,
+            alpha,
+            tol,
+            cache.wide(),
+        ))
     } else {
         None
     };
@@ -190,7 +191,12 @@ pub(crate) fn charlie_kernels(
         Some(Err(n)) => n,
         None => 0,
     };
-    match crate::integrate::dfg_kernel::charlie_sheen_shared(col, cache, alpha, tol) {
+    match crate::integrate::dfg_kernel::charlie_sheen_shared(
+        view.column(),
+        Some(view.cache()),
+        alpha,
+        tol,
+    ) {
         Ok(mut e) => {
             e.evals += spent;
             Ok(e)
@@ -219,13 +225,12 @@ pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResul
     let tol = spec.tolerance;
     Box::new(move |i0| {
         let mu = axes[0].coord(i0);
-        let col = Column::new(mu);
-        let cache = RefCell::new(SheenCache::default());
+        let view = View::new(mu);
         brdfs
             .iter()
             .map(|b| {
                 let (v, e, n) = if mu > 0.0 {
-                    directional_albedo_in(b, mu, tol, Some((&col, &cache)))
+                    directional_albedo_in(b, mu, tol, Some(&view))
                 } else {
                     directional_albedo(b, mu, tol)
                 };

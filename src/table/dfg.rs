@@ -16,7 +16,7 @@
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
-use crate::integrate::dfg_kernel::{self, Column, SheenCache, Smith};
+use crate::integrate::dfg_kernel::{self, Column, Smith, View};
 use crate::integrate::ggx_polar;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::interp1d;
@@ -25,7 +25,6 @@ use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
-use std::cell::{OnceCell, RefCell};
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
@@ -137,41 +136,6 @@ fn split_sum_lazy<'a>(
     (v, e, n + spent)
 }
 
-/// One view's data for the kernels that share it along a table column — the φ-node setup
-/// ([`Column`]) and the cloth kernels' node data ([`SheenCache`]) — built on first use and
-/// then shared by every texel at that view. The kernels tried first (the polar split sum,
-/// sheen_l for narrow cloth lobes) need neither, and building them would cost more than
-/// some of those texels (the cache alone zeroes 266 KB). The results are the same bits
-/// with or without them.
-struct View {
-    /// The view cosine, at most 1 (as [`Column::mu`] has it).
-    mu: f64,
-    col: OnceCell<Column>,
-    cache: OnceCell<RefCell<SheenCache>>,
-}
-
-impl View {
-    fn new(mu: f64) -> View {
-        View {
-            mu: mu.min(1.0),
-            col: OnceCell::new(),
-            cache: OnceCell::new(),
-        }
-    }
-
-    fn mu(&self) -> f64 {
-        self.mu
-    }
-
-    fn column(&self) -> &Column {
-        self.col.get_or_init(|| Column::new(self.mu))
-    }
-
-    fn cache(&self) -> &RefCell<SheenCache> {
-        self.cache.get_or_init(Default::default)
-    }
-}
-
 /// What every texel of a dfg table needs.
 struct Ctx {
     brdfs: Vec<crate::model::Brdf>,
@@ -229,39 +193,16 @@ impl Ctx {
     }
 }
 
-/// The cloth channel at one texel: in light-direction coordinates first — narrow lobes
-/// (α < [`sheen_l::MAX_ALPHA`]) by [`sheen_l`], wide ones (up to α = 1) by
-/// [`sheen_wide`](crate::integrate::sheen_wide)
-/// with the column's shared node data — then, where that does not reach `tol`, the
-/// half-vector kernel with the column's shared node data, then the generic path; the
-/// evaluations of abandoned attempts are counted. A pure function of (μ, α, tol): the same
-/// bits whether the texel is computed alone or in its column.
+/// The cloth channel at one texel: the cloth kernels
+/// ([`charlie_kernels`](super::albedo::charlie_kernels), with the view's shared node data),
+/// then the generic path; the evaluations of abandoned attempts are counted. A pure function
+/// of (μ, α, tol): the same bits whether the texel is computed alone or in its column.
 fn cloth_texel(view: &View, alpha: f64, tol: f64) -> (f64, f64, u64) {
-    use crate::integrate::sheen_wide;
-    let mut spent = 0;
-    let first = if alpha < sheen_l::MAX_ALPHA {
-        Some(sheen_l::charlie_sheen_l(view.mu(), alpha, tol))
-    } else if alpha <= sheen_wide::MAX_ALPHA {
-        let mut c = view.cache().borrow_mut();
-        Some(sheen_wide::charlie_sheen_wide_shared(
-            view.mu(),
-            alpha,
-            tol,
-            c.wide(),
-        ))
-    } else {
-        None
-    };
-    match first {
-        Some(Ok(e)) => return (e.value[0], e.error[0], e.evals),
-        Some(Err(n)) => spent = n,
-        None => {}
-    }
-    match dfg_kernel::charlie_sheen_shared(view.column(), Some(view.cache()), alpha, tol) {
-        Ok(e) => (e.value[0], e.error[0], e.evals + spent),
+    match super::albedo::charlie_kernels(view, alpha, tol) {
+        Ok(e) => (e.value[0], e.error[0], e.evals),
         Err(n) => {
             let (v, e, m) = sheen_albedo(alpha, view.mu(), tol);
-            (v, e, m + n + spent)
+            (v, e, m + n)
         }
     }
 }
