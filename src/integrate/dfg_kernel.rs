@@ -57,16 +57,19 @@ const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
 pub const METHOD: &str = "specialised kernels for the GGX split sum (Smith height-correlated or separable masking) and the Charlie/Ashikhmin cloth channel (src/integrate/dfg_kernel.rs): the nested Clenshaw-Curtis tensor rule of the generic fast path (same coordinates, warps, levels and error estimate) with the integrand in closed form (GGX: D (n.h) dw_h = sinh u/(pi cosh^3 u) du dphi, tan theta_h = alpha sinh u) and the per-view setup shared by a table column; a texel whose estimate does not reach the tolerance goes to the generic path";
 
 /// One view's data for the kernels that share it along a table column — the φ-node setup
-/// ([`Column`]) and the cloth kernels' node data ([`SheenCache`]) — built on first use and
-/// then shared by every texel at that view. The kernels tried first (the polar split sum,
-/// sheen_l for narrow cloth lobes) need neither, and building them would cost more than
-/// some of those texels (the cache alone zeroes 266 KB). The results are the same bits
-/// with or without them.
+/// ([`Column`]), the half-vector cloth kernel's node data ([`SheenCache`]) and the wide
+/// cloth lobes' ([`WideCache`](super::sheen_wide::WideCache)) — built on first use and then
+/// shared by every texel at that view. The kernels tried first (the polar split sum,
+/// sheen_l for narrow cloth lobes, sheen_wide for wide ones) need no column and no
+/// half-vector cache, and building them would cost more than some of those texels (that
+/// cache alone zeroes 266 KB: at 512², one per column was ~1% of the bake in page faults).
+/// The results are the same bits with or without them.
 pub struct View {
     /// The view cosine, at most 1 (as [`Column::mu`] has it).
     mu: f64,
     col: OnceCell<Column>,
     cache: OnceCell<RefCell<SheenCache>>,
+    wide: RefCell<super::sheen_wide::WideCache>,
 }
 
 impl View {
@@ -76,6 +79,7 @@ impl View {
             mu: mu.min(1.0),
             col: OnceCell::new(),
             cache: OnceCell::new(),
+            wide: RefCell::default(),
         }
     }
 
@@ -89,9 +93,15 @@ impl View {
         self.col.get_or_init(|| Column::new(self.mu))
     }
 
-    /// The cloth kernels' node data for this view, created (empty) on the first call.
+    /// The half-vector cloth kernel's node data for this view, created (empty) on the first
+    /// call.
     pub fn cache(&self) -> &RefCell<SheenCache> {
         self.cache.get_or_init(Default::default)
+    }
+
+    /// The wide cloth lobes' node data for this view (filled as texels ask for it).
+    pub fn wide(&self) -> &RefCell<super::sheen_wide::WideCache> {
+        &self.wide
     }
 }
 
@@ -519,8 +529,6 @@ pub struct SheenCache {
     scale: Vec<f64>,
     ln_sin2: Vec<f64>,
     rest: Vec<f64>,
-    /// the light-direction path's data for wide lobes ([`super::sheen_wide`])
-    wide: super::sheen_wide::WideCache,
 }
 
 impl Default for SheenCache {
@@ -530,18 +538,11 @@ impl Default for SheenCache {
             scale: vec![0.0; NMAX],
             ln_sin2: vec![0.0; NMAX * NMAX],
             rest: vec![0.0; NMAX * NMAX],
-            wide: Default::default(),
         }
     }
 }
 
 impl SheenCache {
-    /// The column's data for [`super::sheen_wide::charlie_sheen_wide_shared`] (filled on
-    /// first use; the same results with or without it).
-    pub fn wide(&mut self) -> &mut super::sheen_wide::WideCache {
-        &mut self.wide
-    }
-
     /// Makes sure φ node i has every inner node of stride `stride`.
     fn ensure(&mut self, col: &Column, i: usize, stride: usize) {
         let have = self.level_stride[i];

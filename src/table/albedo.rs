@@ -176,12 +176,9 @@ pub(crate) fn charlie_kernels(
     let first = if alpha < sheen_l::MAX_ALPHA {
         Some(sheen_l::charlie_sheen_l(mu, alpha, tol))
     } else if alpha <= sheen_wide::MAX_ALPHA {
-        let mut cache = view.cache().borrow_mut();
+        let mut cache = view.wide().borrow_mut();
         Some(sheen_wide::charlie_sheen_wide_shared(
-            mu,
-            alpha,
-            tol,
-            cache.wide(),
+            mu, alpha, tol, &mut cache,
         ))
     } else {
         None
