@@ -14,17 +14,9 @@ use brdfbake::integrate::sheen_l::{charlie_sheen_l, MAX_ALPHA};
 use brdfbake::integrate::sheen_wide::{charlie_sheen_wide_shared, WideCache};
 use std::cell::RefCell;
 
-/// CPU time of this thread (not wall time: other load on the machine does not count).
-fn thread_cpu_seconds() -> f64 {
-    let mut t = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `t` is a valid timespec for the call to write.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
-    assert_eq!(rc, 0, "clock_gettime");
-    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
-}
+#[path = "common/cpu_time.rs"]
+mod cpu_time;
+use cpu_time::thread_cpu_seconds;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
