@@ -366,9 +366,9 @@ pub(crate) fn by_rows(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Opt
 /// are the costliest of the row (the light-direction kernel often gives up there, and at
 /// the nodes' tighter tolerance the half-vector kernel too, leaving the generic path: at
 /// 512², interpolating down to the first texel spent 46 M of 138 M evaluations on such
-/// nodes). Measured on filament-dfg's narrow rows at 128² (cut as an interpolation break):
-/// x = 0.1, 0.2, 0.25, 0.3 gave 937 (most rows direct: their nodes' estimates near x = 0.13
-/// use up the budget), 467, 460 and 838 evaluations per texel (778 texel by texel).
+/// nodes). Measured on filament-dfg's narrow rows at 128² (cut as an interpolation break,
+/// nodes at tol/8): x = 0.1, 0.2 and 0.25 gave 937 (most rows direct: their nodes' estimates
+/// near x = 0.13 use up the budget), 467 and 460 evaluations per texel (778 texel by texel).
 const CLOTH_GRAZING_BREAK: f64 = 0.2;
 
 /// The interpolation nodes of the cloth channel are computed at tol/8, not interp1d's tol/4:
