@@ -141,6 +141,35 @@ where
     N: FnMut(f64, f64) -> Sample,
     T: FnMut(usize, f64) -> Sample,
 {
+    line_batched(
+        xs,
+        breaks,
+        nc,
+        tol,
+        node_tol,
+        |ps, t| ps.iter().map(|&x| node_fn(x, t)).collect(),
+        |is, t| is.iter().map(|&i| texel(i, t)).collect(),
+    )
+}
+
+/// [`line_with_node_tol`] with the samples asked for in batches: `nodes(ps, t)` returns the
+/// function at every point of `ps` (the new nodes of one degree, or one interval's
+/// sample-test points), `direct(is, t)` at every texel index of `is` (one interval's direct
+/// texels), in order. A caller whose samples are expensive may compute a batch in parallel;
+/// as each sample is a pure function of its point, the line's values do not depend on how.
+pub fn line_batched<N, T>(
+    xs: &[f64],
+    breaks: &[f64],
+    nc: usize,
+    tol: f64,
+    node_tol: f64,
+    mut nodes: N,
+    mut direct: T,
+) -> LineValues
+where
+    N: FnMut(&[f64], f64) -> Vec<Sample>,
+    T: FnMut(&[usize], f64) -> Vec<Sample>,
+{
     let nx = xs.len();
     let mut out = LineValues {
         value: vec![0.0; nx * nc],
@@ -178,15 +207,21 @@ where
             }
             // the degree-n values, reusing the degree-n/2 ones at even indices
             let old = std::mem::take(&mut vals);
+            let fresh = |j: usize| old.is_empty() || j % 2 == 1;
+            let ps: Vec<f64> = (0..=n)
+                .filter(|&j| fresh(j))
+                .map(|j| node(a, b, j, n))
+                .collect();
+            let mut new = nodes(&ps, node_tol).into_iter();
+            out.nodes += ps.len();
             vals = (0..=n)
                 .map(|j| {
-                    if !old.is_empty() && j % 2 == 0 {
-                        old[j / 2].clone()
-                    } else {
-                        let s = node_fn(node(a, b, j, n), node_tol);
+                    if fresh(j) {
+                        let s = new.next().expect("one sample per node");
                         out.evals += s.evals;
-                        out.nodes += 1;
                         s
+                    } else {
+                        old[j / 2].clone()
                     }
                 })
                 .collect();
@@ -214,11 +249,12 @@ where
                 // points between nodes before accepting it (the "sample test" of
                 // Aurentz & Trefethen, "Chopping a Chebyshev series", ACM TOMS 43, 2017, §3)
                 let mut ok = true;
-                for t in sample_points(n) {
-                    let x = 0.5 * (a + b) + 0.5 * (b - a) * t;
-                    let s = node_fn(x, node_tol);
+                let ts = sample_points(n);
+                let ps = ts.map(|t| 0.5 * (a + b) + 0.5 * (b - a) * t);
+                let got = nodes(&ps, node_tol);
+                out.nodes += ps.len();
+                for (t, s) in ts.into_iter().zip(got) {
                     out.evals += s.evals;
-                    out.nodes += 1;
                     for (c, (co, err)) in fit.iter().enumerate() {
                         // both sides' errors: the interpolant's estimate and the sample's
                         ok &= (clenshaw(co, t) - s.value[c]).abs() <= err + s.error[c];
@@ -261,8 +297,8 @@ where
                 }
             }
             Outcome::Direct => {
-                for i in i0..i1 {
-                    let s = texel(i, tol);
+                let is: Vec<usize> = (i0..i1).collect();
+                for (i, s) in is.iter().copied().zip(direct(&is, tol)) {
                     out.evals += s.evals;
                     out.direct += 1;
                     for c in 0..nc {
