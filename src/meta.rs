@@ -304,17 +304,17 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     } else {
         method
     };
-    let method = if spec.kind == TableKind::Dfg && crate::table::dfg::rows_interpolated(spec) {
+    let method = if spec.kind == TableKind::Dfg && crate::table::dfg_lines::interpolated(spec) {
         format!(
-            "Split-sum channels row by row: {} Rows are first cut at mu = 0.01 (texels closer to grazing: one row interval, usually computed texel by texel). Each node: {method}",
+            "Split-sum channels by lines (src/table/dfg_lines.rs): on tables of at least 128 columns, the rows with alpha >= 1/16, and those of [1/64, 1/16) and [1/256, 1/64) where a band holds at least 24 rows, on grids: interpolated across the table in x = sqrt(mu) from whole columns (at tolerance/8), each column interpolated along the roughness axis in y = sqrt(alpha) (nodes at tolerance/8 of the column's); every other row along the row in x = sqrt(mu). Lines across the table are first cut at mu = 0.01 (texels closer to grazing: usually computed directly, a column at a time on grids). Interpolation: {} Each quadrature: {method}",
             crate::integrate::interp1d::METHOD
         )
     } else {
         method
     };
     let method = if spec.kind == TableKind::Dfg && spec.cloth {
-        let interpolated = if crate::table::dfg::rows_interpolated(spec) {
-            "interpolated by the same rule: narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) (texels with mu < 0.04 computed directly; nodes at tolerance/8), wide lobes (1/16 <= alpha <= 1) along each column in x = sqrt(alpha) (nodes at tolerance/4); each node or direct texel: "
+        let interpolated = if crate::table::dfg_lines::interpolated(spec) {
+            "interpolated by the same rule: wide lobes (1/16 <= alpha <= 1) on a grid as above (columns in y = sqrt(alpha), their nodes at tolerance/4 of the column's) on tables of at least 128 columns, else along each column in y = sqrt(alpha) (nodes at tolerance/4); narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) above mu = 0.04 (nodes at tolerance/8) and below it texel by texel, or, from 64 narrow rows on, along each texel column in y = ln(alpha) (nodes at tolerance/8); each node or direct texel: "
         } else {
             ""
         };

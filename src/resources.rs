@@ -166,7 +166,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // interpolated too (narrow lobes along rows, wide ones along columns): filament-dfg
         // 7.24 M cloth evaluations at 128² (442 per texel), 53.1 M at 512² (203)
         K::Dfg => {
-            let interpolated = crate::table::dfg::rows_interpolated(spec);
+            let interpolated = crate::table::dfg_lines::interpolated(spec);
             let cloth = match (spec.cloth, interpolated) {
                 (false, _) => 0.0,
                 (true, true) => 450.0,

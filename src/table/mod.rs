@@ -8,6 +8,7 @@
 pub mod albedo;
 pub mod classic;
 pub mod dfg;
+pub mod dfg_lines;
 pub mod dielectric;
 pub mod energy;
 pub mod local;
@@ -108,10 +109,10 @@ pub fn bake_until(
     // The texel results in blocks: one block per column (axis-0 index) for dfg tables, which
     // are computed a column (one view μ, all roughnesses) per task so that the column's view
     // data is built once (dfg::column_fn); one block in texel order otherwise.
-    // (GGX dfg tables go row by row instead, interpolated along rows: dfg::by_rows, whose
+    // (GGX dfg tables go by lines instead, interpolated along rows and columns: dfg_lines, whose
     // dense result needs no per-texel allocation)
     let dense = if spec.kind == TableKind::Dfg {
-        dfg::by_rows(spec, &out_of_time)
+        dfg_lines::bake(spec, &out_of_time)
     } else {
         None
     };

@@ -1,0 +1,746 @@
+//! How a GGX dfg table is baked: by lines of texels interpolated from fewer quadratures.
+//!
+//! Each channel of a texel is an integral that costs ~1,000–20,000 integrand evaluations, but
+//! along a line of the table it is a smooth function of the line's coordinate, so
+//! [`interp1d`] computes it at Chebyshev nodes and interpolates, with the interpolation's
+//! error in each texel's estimate. A table is covered by three kinds of lines:
+//! - **rows** (one roughness, every view μ, in x = √μ): each node one quadrature;
+//! - **grids**: lines across the table in x whose samples are whole *columns* — a column
+//!   (one μ, the rows of a band of roughnesses) itself interpolated along the roughness axis
+//!   ([`RoughnessLine`]). A grid's cost hardly grows with the table's size (a 512² table
+//!   needs about the columns and column nodes of a 128² one), while rows cost per row;
+//! - **strips**: columns alone, at the texel columns nearest grazing.
+//!
+//! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²;
+//! [`plan`] has the rules):
+//! - *Split-sum pair.* Wide lobes (α ≥ 1/16) on a grid in (√μ, √α): 2.9 M / 3.9 M
+//!   (rows: ~5 M / ~49 M). Narrower bands [1/64, 1/16) and [1/256, 1/64) on their own grids
+//!   where they hold at least [`GRID_MIN_ROWS`] rows (at 512²: 3.2 M and 3.4 M against 5.1 M
+//!   for the 32 rows of the lower band), rows otherwise; α < 1/256 always by rows (their
+//!   rows are cheap and their columns are not). One grid over every roughness cost 19.8 M /
+//!   53.3 M: near grazing the split sum of a narrow lobe changes on the scale of α itself.
+//! - *Cloth, wide lobes* (1/16 ≤ α ≤ 1): a grid in (√μ, √α), whose kernel shares its node
+//!   data along a column ([`View`]): 3.4 M / 4.0 M (columns alone: 4.3 M / 17.4 M).
+//! - *Cloth, narrow lobes* (α < 1/16): rows in √μ above μ = 0.04, and below it a strip of
+//!   columns in ln α: 1.0 M + 1.4 M / 4.4 M + 5.6 M (the strip's texels one by one: 1.2 M /
+//!   20.4 M). Their albedo behaves like `exp(−c/α)` away from grazing, so a grid over them
+//!   cost 5.8 M / 20.6 M.
+//!
+//! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
+//! Lebesgue constant times the largest column estimate at its nodes); a column's is its
+//! y-interpolation's over its own nodes. Samples that serve as nodes are computed at 1/8 of
+//! the tolerance of the line they serve ([`NODE_TOL_FRACTION`]), so that the Lebesgue
+//! constant (at most 3.66 at degree 64) times their estimates stays below half the
+//! tolerance; where it still does not, [`interp1d`] recomputes them tighter.
+//!
+//! **Determinism.** Every sample is a pure function of its coordinates, and each line is
+//! processed in a fixed order; lines, and the columns of one grid degree, run in parallel
+//! without changing a bit.
+
+use super::dfg::{as_sample, cloth_sample, cloth_texel, Ctx, Dense};
+use super::TableSpec;
+use crate::integrate::dfg_kernel::View;
+use crate::integrate::interp1d::{self, LineValues, Sample};
+use crate::integrate::{sheen_l, sheen_wide};
+use crate::lut::Axis;
+use rayon::prelude::*;
+
+/// Where the lines in x = √μ are cut first: μ = 0.01 (θv ≈ 89.4°). Closer to grazing the split
+/// sum of a narrow lobe changes on the scale of μ itself (the masking layer at the horizon),
+/// which costs many nodes, and those nodes are the most expensive quadratures of the row:
+/// the few texels there (one of a 128-texel row, five of 512) are computed directly (as
+/// columns, on a grid). Measured on karis-envbrdf's rows: 10.3 → 6.5 M evaluations at 128²,
+/// 79 → 42 M at 512² (cuts at μ = 0.0025 … 0.0625 tried; 0.01 is best at both sizes).
+const GRAZING_BREAK: f64 = 0.1;
+
+/// Below which, in x = √μ, the cloth channel of narrow lobes goes by columns (the strip):
+/// μ = 0.04. There their albedo changes on the scale of μ, and their quadratures are the
+/// costliest of a row (the light-direction kernel often gives up, and at a node's tighter
+/// tolerance the half-vector kernel too). Measured on filament-dfg's narrow rows at 128²
+/// (cut as a break, nodes at tol/8): x = 0.1, 0.2 and 0.25 gave 937, 467 and 460
+/// evaluations per texel (778 texel by texel); as a break at 512², interpolating down to the
+/// first texel spent 46 M of 138 M evaluations on nodes near grazing.
+const CLOTH_GRAZING_BREAK: f64 = 0.2;
+
+/// Interpolation nodes (and sample-test points) are computed at this fraction of the
+/// tolerance of the line they serve, not interp1d's 1/4: a quadrature's or a column's
+/// estimate comes close to what it was asked for, and at 1/4 the Lebesgue constant (2.4 at
+/// degree 8, 3.66 at 64) times it exceeds the half of the tolerance beyond which interp1d
+/// gives up on an interval (measured: most narrow cloth rows then went texel by texel). The
+/// wide cloth lobes' columns use 1/4 for their own nodes: their kernel's estimates sit well
+/// below what they are asked for (3.4 M against 4.1 M evaluations at 128²).
+const NODE_TOL_FRACTION: f64 = 1.0 / 8.0;
+const WIDE_CLOTH_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
+
+/// Bands of α (lower edges) whose split-sum pair may go on a grid of its own; below the
+/// lowest, rows. Measured as in the module doc.
+const PAIR_BANDS: [f64; 3] = [1.0 / 256.0, 1.0 / 64.0, 1.0 / 16.0];
+
+/// A band goes on a grid when it holds at least this many rows: a grid costs about what
+/// 24 rows do (at 128² the 16 rows of [1/64, 1/16) cost 1.2 M by rows, 2.2 M on a grid;
+/// at 512² its 64 rows 5.1 M by rows, 3.2 M on a grid).
+const GRID_MIN_ROWS: usize = 24;
+
+/// The strip only pays for at least this many narrow rows (at 128² its 32 rows cost 1.4 M
+/// evaluations by columns against 1.2 M texel by texel; at 512², 128 rows: 5.6 M against
+/// 20.4 M). Below it the rows' texels below the break are computed one by one.
+const STRIP_MIN_ROWS: usize = 64;
+
+/// Grids only pay on tables of at least this many texel columns: a grid's x-line needs
+/// ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids against 10.0 M
+/// without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at 32²). Below it
+/// the pair goes by rows and the wide cloth lobes by columns alone.
+const GRID_MIN_COLUMNS: usize = 128;
+
+/// Whether [`bake`] bakes this table: 2D dfg tables whose split-sum channels go through the
+/// GGX kernels (analytic in √μ along a row, in √α along a column), with view cosines
+/// increasing and positive. Lines too short to pay are computed texel by texel inside
+/// [`interp1d`].
+pub fn interpolated(spec: &TableSpec) -> bool {
+    let [x, _] = match spec.axes.as_slice() {
+        [x, y] => [x, y],
+        _ => return false,
+    };
+    super::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
+        && spec.model.diffuse_weight == 0.0
+        && x.size >= 2
+        && x.coord(0) > 0.0
+        && (1..x.size).all(|i| x.coord(i) > x.coord(i - 1))
+}
+
+/// The variable in which a line along the roughness axis is interpolated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum RoughnessVar {
+    /// y = √α: GGX's split sum (a function of α² as α → 0) and the wide cloth lobes
+    /// (`sin^{1/α}`, analytic in 1/α away from α = 0) are analytic in it.
+    Sqrt,
+    /// y = ln α: the narrow cloth lobes near grazing, whose albedo changes on the scale of α
+    /// itself as α → 0.
+    Ln,
+}
+
+impl RoughnessVar {
+    fn y(self, alpha: f64) -> f64 {
+        match self {
+            RoughnessVar::Sqrt => alpha.sqrt(),
+            RoughnessVar::Ln => alpha.ln(),
+        }
+    }
+    fn alpha(self, y: f64) -> f64 {
+        match self {
+            RoughnessVar::Sqrt => y * y,
+            RoughnessVar::Ln => y.exp(),
+        }
+    }
+}
+
+/// Some rows of the roughness axis as a line for [`interp1d`]: in order of increasing α, at
+/// y = `var.y(α)`, and where each sits in the axis.
+#[derive(Debug)]
+struct RoughnessLine {
+    var: RoughnessVar,
+    /// `ys[k]` of the k-th smallest α, strictly increasing.
+    ys: Vec<f64>,
+    /// The k-th smallest α, exactly as the axis gives it (for texels computed directly).
+    alphas: Vec<f64>,
+    /// The axis index of the k-th smallest α.
+    row: Vec<usize>,
+}
+
+impl RoughnessLine {
+    /// The rows `rows` (in axis order); `None` if there are none, or their α is not positive
+    /// and strictly monotonic along the axis (every roughness quantity is, but a line must
+    /// not depend on it).
+    fn new(axis: &Axis, var: RoughnessVar, mut row: Vec<usize>) -> Option<RoughnessLine> {
+        let alpha = |j: usize| axis.alpha(j).unwrap_or(f64::NAN);
+        if row.len() >= 2 && alpha(row[0]) > alpha(row[1]) {
+            row.reverse();
+        }
+        let alphas: Vec<f64> = row.iter().map(|&j| alpha(j)).collect();
+        let ys: Vec<f64> = alphas.iter().map(|&a| var.y(a)).collect();
+        let ok = alphas.first().is_some_and(|&a| a > 0.0)
+            && ys.iter().all(|y| y.is_finite())
+            && ys.windows(2).all(|w| w[1] > w[0]);
+        ok.then_some(RoughnessLine {
+            var,
+            ys,
+            alphas,
+            row,
+        })
+    }
+}
+
+/// Which lines serve which rows, per channel. Every row is on exactly one line per channel:
+/// a grid, or its own row; the strip's columns serve the rows of `strip` below
+/// [`CLOTH_GRAZING_BREAK`] instead of those rows' lines.
+#[derive(Debug)]
+struct Plan {
+    pair_grids: Vec<RoughnessLine>,
+    pair_rows: Vec<usize>,
+    cloth_grid: Option<RoughnessLine>,
+    /// The same rows by columns alone, at every texel column (where a grid would not pay).
+    cloth_columns: Option<RoughnessLine>,
+    cloth_rows: Vec<usize>,
+    strip: Option<RoughnessLine>,
+}
+
+/// The rules of the module doc for a table of `nx` texel columns and the rows of `ay`.
+fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
+    let alpha = |j: usize| ay.alpha(j).expect("roughness axis");
+    let rows_where =
+        |p: &dyn Fn(f64) -> bool| -> Vec<usize> { (0..ay.size).filter(|&j| p(alpha(j))).collect() };
+    let mut pair_grids = Vec::new();
+    let mut on_grid = vec![false; ay.size];
+    for (k, &lo) in PAIR_BANDS.iter().enumerate() {
+        let hi = PAIR_BANDS.get(k + 1).copied().unwrap_or(f64::INFINITY);
+        let rows = rows_where(&|a| a >= lo && a < hi);
+        if rows.len() < GRID_MIN_ROWS || nx < GRID_MIN_COLUMNS {
+            continue;
+        }
+        if let Some(l) = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows) {
+            for &j in &l.row {
+                on_grid[j] = true;
+            }
+            pair_grids.push(l);
+        }
+    }
+    let pair_rows = (0..ay.size).filter(|&j| !on_grid[j]).collect();
+    if !cloth {
+        return Plan {
+            pair_grids,
+            pair_rows,
+            cloth_grid: None,
+            cloth_columns: None,
+            cloth_rows: Vec::new(),
+            strip: None,
+        };
+    }
+    let wide = |a: f64| (sheen_l::MAX_ALPHA..=sheen_wide::MAX_ALPHA).contains(&a);
+    let wide = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows_where(&wide));
+    let cloth_rows = (0..ay.size)
+        .filter(|&j| !wide.as_ref().is_some_and(|g| g.row.contains(&j)))
+        .collect();
+    let (cloth_grid, cloth_columns) = if nx >= GRID_MIN_COLUMNS {
+        (wide, None)
+    } else {
+        (None, wide)
+    };
+    let narrow = rows_where(&|a| a < sheen_l::MAX_ALPHA);
+    let strip = if narrow.len() >= STRIP_MIN_ROWS {
+        RoughnessLine::new(ay, RoughnessVar::Ln, narrow)
+    } else {
+        None
+    };
+    Plan {
+        pair_grids,
+        pair_rows,
+        cloth_grid,
+        cloth_columns,
+        cloth_rows,
+        strip,
+    }
+}
+
+fn line_sample(line: LineValues) -> Sample {
+    Sample {
+        value: line.value,
+        error: line.error,
+        evals: line.evals,
+    }
+}
+
+/// A zero sample of `nc` channels (what every sample becomes once `stop()` says so).
+fn blank(nc: usize) -> Sample {
+    Sample {
+        value: vec![0.0; nc],
+        error: vec![0.0; nc],
+        evals: 0,
+    }
+}
+
+type Stop<'a> = &'a (dyn Fn() -> bool + Sync);
+
+impl Ctx {
+    /// The split-sum pair of the rows of `rl` at view μ (one table column), interpolated along
+    /// the column from [`Ctx::pair_at`] values; channel `2k + c` is channel c of `rl`'s k-th
+    /// row. Its texels computed directly are [`Ctx::pair`]'s.
+    fn pair_column(&self, rl: &RoughnessLine, mu: f64, tol: f64, stop: Stop) -> LineValues {
+        let view = View::new(mu);
+        interp1d::line_with_node_tol(
+            &rl.ys,
+            &[],
+            2,
+            tol,
+            tol * NODE_TOL_FRACTION,
+            |y, t| {
+                if stop() {
+                    return blank(2);
+                }
+                as_sample(self.pair_at(rl.var.alpha(y), &view, t))
+            },
+            |k, t| {
+                if stop() {
+                    return blank(2);
+                }
+                as_sample(self.pair(rl.row[k], &view, t))
+            },
+        )
+    }
+
+    /// The cloth channel of the rows of `rl` at view μ, interpolated along the column from
+    /// [`cloth_texel`] values, whose wide-lobe kernel shares its node data along the column
+    /// ([`View`]); channel k is `rl`'s k-th row.
+    fn cloth_column(
+        &self,
+        rl: &RoughnessLine,
+        mu: f64,
+        tol: f64,
+        node_fraction: f64,
+        stop: Stop,
+    ) -> LineValues {
+        let view = View::new(mu);
+        let at = |alpha: f64, t: f64| {
+            if stop() {
+                return blank(1);
+            }
+            cloth_sample(cloth_texel(&view, alpha, t))
+        };
+        interp1d::line_with_node_tol(
+            &rl.ys,
+            &[],
+            1,
+            tol,
+            tol * node_fraction,
+            |y, t| at(rl.var.alpha(y), t),
+            |k, t| at(rl.alphas[k], t),
+        )
+    }
+}
+
+/// A grid: the line across the table in x = √μ (cut at `breaks`) whose samples are the
+/// columns `column(μ, tol)` (`nc` channels per row of the column), the columns of one batch
+/// (one degree's new nodes, one interval's sample-test points or direct texel columns)
+/// computed in parallel. Channel `k·nc + c` of texel i is channel c of the column's k-th row.
+fn grid(
+    ax: &Axis,
+    xs: &[f64],
+    breaks: &[f64],
+    channels: usize,
+    tol: f64,
+    column: &(dyn Fn(f64, f64) -> LineValues + Sync),
+) -> LineValues {
+    interp1d::line_batched(
+        xs,
+        breaks,
+        channels,
+        tol,
+        tol * NODE_TOL_FRACTION,
+        |ps, t| {
+            ps.par_iter()
+                .with_min_len(1)
+                .map(|&x| line_sample(column(x * x, t)))
+                .collect()
+        },
+        |is, t| {
+            is.par_iter()
+                .with_min_len(1)
+                .map(|&i| line_sample(column(ax.coord(i), t)))
+                .collect()
+        },
+    )
+}
+
+/// The split-sum pair of row j along x = √μ, cut at [`GRAZING_BREAK`].
+fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
+    let ax = &ctx.axes[0];
+    interp1d::line_with_node_tol(
+        xs,
+        &[GRAZING_BREAK],
+        2,
+        ctx.tol,
+        ctx.tol * interp1d::NODE_TOL_FRACTION,
+        |x, t| {
+            if stop() {
+                return blank(2);
+            }
+            as_sample(ctx.pair(j, &View::new(x * x), t))
+        },
+        |i, t| {
+            if stop() {
+                return blank(2);
+            }
+            as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
+        },
+    )
+}
+
+/// The cloth channel of row j along x = √μ above [`CLOTH_GRAZING_BREAK`] ([`cloth_texel`]
+/// values, nodes at [`NODE_TOL_FRACTION`]); below it, the texels are computed one by one if
+/// `direct_below`, else left 0 (the strip computes them).
+fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, direct_below: bool, stop: Stop) -> LineValues {
+    let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
+    let at = |mu: f64, t: f64| {
+        if stop() {
+            return blank(1);
+        }
+        cloth_sample(cloth_texel(&View::new(mu), alpha, t))
+    };
+    let k0 = xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK);
+    let mut out = interp1d::line_with_node_tol(
+        &xs[k0..],
+        &[],
+        1,
+        ctx.tol,
+        ctx.tol * NODE_TOL_FRACTION,
+        |x, t| at(x * x, t),
+        |i, t| at(ctx.axes[0].coord(k0 + i), t),
+    );
+    let (mut value, mut error) = (vec![0.0; k0], vec![0.0; k0]);
+    if direct_below {
+        for i in 0..k0 {
+            let s = at(ctx.axes[0].coord(i), ctx.tol);
+            value[i] = s.value[0];
+            error[i] = s.error[0];
+            out.evals += s.evals;
+            out.direct += 1;
+        }
+    }
+    value.extend_from_slice(&out.value);
+    error.extend_from_slice(&out.error);
+    out.value = value;
+    out.error = error;
+    out
+}
+
+/// Where texel (i, j)'s channels are: the line and the index of its first channel.
+fn locate<'a>(
+    grids: &'a [(RoughnessLine, LineValues)],
+    rows: &'a [Option<LineValues>],
+    nc: usize,
+    i: usize,
+    j: usize,
+    grid_of_row: &[Option<(usize, usize)>],
+) -> (&'a LineValues, usize) {
+    match grid_of_row[j] {
+        Some((g, k)) => (&grids[g].1, (i * grids[g].0.ys.len() + k) * nc),
+        None => (
+            rows[j]
+                .as_ref()
+                .expect("every row is on a grid or its own line"),
+            i * nc,
+        ),
+    }
+}
+
+/// For each row of an axis of `ny` rows, (grid, position) if it is on one of `lines`.
+fn positions<'a>(
+    lines: impl Iterator<Item = &'a RoughnessLine>,
+    ny: usize,
+) -> Vec<Option<(usize, usize)>> {
+    let mut at = vec![None; ny];
+    for (g, l) in lines.enumerate() {
+        for (k, &j) in l.row.iter().enumerate() {
+            at[j] = Some((g, k));
+        }
+    }
+    at
+}
+
+/// The whole table by lines (see the module doc); `None` where [`interpolated`] says no.
+/// Results in texel order (μ fastest), without per-texel allocations. `stop()` true makes
+/// every remaining sample a cheap zero (the caller then discards the table).
+pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
+    if !interpolated(spec) {
+        return None;
+    }
+    let ctx = Ctx::new(spec);
+    let (ax, ay) = (&ctx.axes[0], &ctx.axes[1]);
+    let (nx, ny) = (ax.size, ay.size);
+    let tol = ctx.tol;
+    let p = plan(nx, ay, ctx.cloth);
+    let xs: Vec<f64> = (0..nx).map(|i| ax.coord(i).sqrt()).collect();
+    let k0 = if p.strip.is_some() {
+        xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK)
+    } else {
+        0
+    };
+    let in_rows = |rows: &[usize], f: &(dyn Fn(usize) -> LineValues + Sync)| {
+        let mut out: Vec<Option<LineValues>> = (0..ny).map(|_| None).collect();
+        let lines: Vec<LineValues> = rows.par_iter().with_min_len(1).map(|&j| f(j)).collect();
+        for (&j, l) in rows.iter().zip(lines) {
+            out[j] = Some(l);
+        }
+        out
+    };
+    let pair_grids = || -> Vec<LineValues> {
+        p.pair_grids
+            .par_iter()
+            .map(|rl| {
+                grid(ax, &xs, &[GRAZING_BREAK], 2 * rl.ys.len(), tol, &|mu, t| {
+                    ctx.pair_column(rl, mu, t, stop)
+                })
+            })
+            .collect()
+    };
+    let pair_rows = || in_rows(&p.pair_rows, &|j| pair_row(&ctx, &xs, j, stop));
+    let cloth_grid = || {
+        p.cloth_grid.as_ref().map(|rl| {
+            grid(ax, &xs, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
+                ctx.cloth_column(rl, mu, t, WIDE_CLOTH_NODE_TOL_FRACTION, stop)
+            })
+        })
+    };
+    let cloth_rows = || {
+        let strip_rows = p.strip.as_ref().map_or(&[][..], |s| &s.row[..]);
+        in_rows(&p.cloth_rows, &|j| {
+            cloth_row(&ctx, &xs, j, !strip_rows.contains(&j), stop)
+        })
+    };
+    let columns = |rl: &Option<RoughnessLine>, n: usize, fraction: f64| -> Vec<LineValues> {
+        let Some(rl) = rl else {
+            return Vec::new();
+        };
+        (0..n)
+            .into_par_iter()
+            .with_min_len(1)
+            .map(|i| ctx.cloth_column(rl, ax.coord(i), tol, fraction, stop))
+            .collect()
+    };
+    let strip = || {
+        rayon::join(
+            || columns(&p.strip, k0, NODE_TOL_FRACTION),
+            || columns(&p.cloth_columns, nx, WIDE_CLOTH_NODE_TOL_FRACTION),
+        )
+    };
+    // every set of lines at once, so that one set's last lines overlap the others'
+    let ((pair_grids, pair_rows), ((cloth_grid, cloth_rows), (strip, cloth_columns))) = rayon::join(
+        || rayon::join(pair_grids, pair_rows),
+        || rayon::join(|| rayon::join(cloth_grid, cloth_rows), strip),
+    );
+    let mut out = Dense {
+        channels: if ctx.cloth { 3 } else { 2 },
+        value: Vec::with_capacity(nx * ny * 3),
+        error: Vec::with_capacity(nx * ny * 3),
+        evals: 0,
+    };
+    out.evals += pair_grids.iter().map(|l| l.evals).sum::<u64>();
+    for l in pair_rows.iter().chain(&cloth_rows).flatten() {
+        out.evals += l.evals;
+    }
+    out.evals += cloth_grid.as_ref().map_or(0, |l| l.evals);
+    out.evals += strip
+        .iter()
+        .chain(&cloth_columns)
+        .map(|l| l.evals)
+        .sum::<u64>();
+    let pair_grids: Vec<(RoughnessLine, LineValues)> =
+        p.pair_grids.into_iter().zip(pair_grids).collect();
+    let pair_at = positions(pair_grids.iter().map(|g| &g.0), ny);
+    let cloth_grids: Vec<(RoughnessLine, LineValues)> =
+        p.cloth_grid.into_iter().zip(cloth_grid).collect();
+    let cloth_at = positions(cloth_grids.iter().map(|g| &g.0), ny);
+    let strip_at = positions(p.strip.iter(), ny);
+    let columns_at = positions(p.cloth_columns.iter(), ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let (l, c) = locate(&pair_grids, &pair_rows, 2, i, j, &pair_at);
+            out.value.extend_from_slice(&l.value[c..c + 2]);
+            out.error.extend_from_slice(&l.error[c..c + 2]);
+            if !ctx.cloth {
+                continue;
+            }
+            let (l, c) = match (strip_at[j], columns_at[j]) {
+                (Some((_, k)), _) if i < k0 => (&strip[i], k),
+                (_, Some((_, k))) => (&cloth_columns[i], k),
+                _ => locate(&cloth_grids, &cloth_rows, 1, i, j, &cloth_at),
+            };
+            out.value.push(l.value[c]);
+            out.error.push(l.error[c]);
+        }
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lut::{Axis, Convention, Quantity};
+    use crate::model::{Fresnel, Masking, NdfKind, RoughnessQuantity};
+    use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TexelResult};
+
+    fn spec(nx: usize, roughness: [f64; 2], ny: usize, cloth: bool, tol: f64) -> TableSpec {
+        TableSpec {
+            name: "t".into(),
+            kind: TableKind::Dfg,
+            model: ModelSpec {
+                ndf: Some(NdfKind::Ggx),
+                masking: Masking::SmithHeightCorrelated,
+                fresnel: Fresnel::None,
+                diffuse_weight: 0.0,
+                classic: None,
+            },
+            axes: vec![
+                Axis {
+                    name: "cos_theta_v".into(),
+                    quantity: Quantity::Cosine,
+                    size: nx,
+                    range: [0.0, 1.0],
+                    convention: Convention::Centers,
+                },
+                Axis {
+                    name: "roughness".into(),
+                    quantity: Quantity::Roughness(RoughnessQuantity::Perceptual),
+                    size: ny,
+                    range: roughness,
+                    convention: Convention::Endpoints,
+                },
+            ],
+            dfg_layout: Some(if cloth {
+                DfgLayout::Filament
+            } else {
+                DfgLayout::Karis
+            }),
+            cloth,
+            storage: Storage::F32,
+            tolerance: tol,
+        }
+    }
+
+    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/16, 96 rows) and the
+    /// other rows by rows; at 512² three pair grids (the bands from 1/256 up hold 32, 64
+    /// and 384 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
+    /// (128 narrow rows) their grazing texels by the strip.
+    #[test]
+    fn plan_follows_the_rules() {
+        for (n, grids) in [(128, 1), (512, 3)] {
+            let mut s = spec(n, [0.0, 1.0], n, true, 1e-7);
+            s.axes[1].convention = Convention::Centers;
+            let p = plan(n, &s.axes[1], true);
+            assert_eq!(p.pair_grids.len(), grids, "{n}²");
+            let on_grids: usize = p.pair_grids.iter().map(|g| g.row.len()).sum();
+            assert_eq!(on_grids + p.pair_rows.len(), n, "every row once");
+            assert_eq!(p.pair_grids.last().unwrap().row.len(), 3 * n / 4);
+            let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
+            assert_eq!(wide.row.len(), 3 * n / 4);
+            assert_eq!(p.cloth_rows.len(), n / 4);
+            // the strip from 64 narrow rows on
+            assert_eq!(p.strip.is_some(), n == 512);
+            if let Some(strip) = &p.strip {
+                assert_eq!(strip.row, p.cloth_rows);
+            }
+        }
+    }
+
+    /// The fine reference of texel (i, j): every channel computed alone at `tol`.
+    fn texel_at(ctx: &Ctx, i: usize, j: usize, tol: f64) -> TexelResult {
+        let view = View::new(ctx.axes[0].coord(i));
+        let mut r = ctx.pair(j, &view, tol);
+        let (v, e, n) = cloth_texel(&view, ctx.axes[1].alpha(j).unwrap(), tol);
+        r.value.push(v);
+        r.error.push(e);
+        r.evals += n;
+        r
+    }
+
+    /// Texels of a 128 × 96 table baked by lines — the pair and the wide cloth lobes on
+    /// grids (73 rows with α ≥ 1/16), the other rows by rows — lie within their own
+    /// estimates of the same channels computed texel by texel at a 100× tighter tolerance
+    /// (whose estimate is added), and every estimate is within the table's tolerance: all
+    /// rows of 6 columns (the grazing ones among them) and all columns of 6 rows (either side
+    /// of the bands' edges). The lines cost fewer evaluations than the texels would
+    /// (estimated from the checked texels at the table's tolerance).
+    #[test]
+    fn lines_match_texel_values() {
+        let tol = 1e-7;
+        let (nx, ny) = (128, 96);
+        let s = spec(nx, [0.02, 1.0], ny, true, tol);
+        let p = plan(nx, &s.axes[1], true);
+        assert_eq!(p.pair_grids.len(), 1);
+        assert!(p.cloth_grid.is_some() && p.strip.is_none());
+        let table = bake(&s, &|| false).expect("a GGX dfg table goes by lines");
+        let ctx = Ctx::new(&s);
+        let (mut checked, mut texel_evals) = (0u64, 0u64);
+        let cols = [0, 1, 4, 20, 77, 127];
+        let rows = [0, 11, 22, 23, 50, 95];
+        for j in 0..ny {
+            for i in 0..nx {
+                if !cols.contains(&i) && !rows.contains(&j) {
+                    continue;
+                }
+                let fine = texel_at(&ctx, i, j, tol * 1e-2);
+                texel_evals += texel_at(&ctx, i, j, tol).evals;
+                checked += 1;
+                let t = j * nx + i;
+                for c in 0..3 {
+                    let (v, e) = (table.value[3 * t + c], table.error[3 * t + c]);
+                    let d = (v - fine.value[c]).abs();
+                    assert!(
+                        d <= e + fine.error[c],
+                        "texel ({i}, {j}) channel {c}: {v} vs {} (estimates {e:e} + {:e})",
+                        fine.value[c],
+                        fine.error[c]
+                    );
+                    assert!(e <= tol, "texel ({i}, {j}) channel {c}: estimate {e:e}");
+                }
+            }
+        }
+        let all = texel_evals as f64 * (nx * ny) as f64 / checked as f64;
+        assert!(
+            2.0 * (table.evals as f64) < all,
+            "{} evaluations by lines vs ~{all:.0} texel by texel",
+            table.evals
+        );
+    }
+
+    /// The strip's columns (the narrow lobes' cloth in y = ln α, 80 rows from α = 4e-4 to
+    /// just below 1/16) at three grazing views lie within their own estimates of the texel
+    /// values at a 100× tighter tolerance, within the tolerance, from fewer quadratures than
+    /// texels.
+    #[test]
+    fn strip_columns_match_texel_values() {
+        let tol = 1e-7;
+        let s = spec(4, [0.02, 0.249], 80, true, tol);
+        let ctx = Ctx::new(&s);
+        let rl = RoughnessLine::new(&s.axes[1], RoughnessVar::Ln, (0..80).collect())
+            .expect("α increases");
+        for mu in [0.002, 0.02, 0.035] {
+            let col = ctx.cloth_column(&rl, mu, tol, NODE_TOL_FRACTION, &|| false);
+            assert!(col.nodes + col.direct < 80, "μ = {mu}: not interpolated");
+            for (k, &alpha) in rl.alphas.iter().enumerate() {
+                let (r, re, _) = cloth_texel(&View::new(mu), alpha, tol * 1e-2);
+                let (v, e) = (col.value[k], col.error[k]);
+                assert!(
+                    (v - r).abs() <= e + re,
+                    "μ = {mu}, α = {alpha}: {v} vs {r} (estimates {e:e} + {re:e})"
+                );
+                assert!(e <= tol, "estimate {e:e}");
+            }
+        }
+    }
+
+    /// Every channel agrees with the column path (texel by texel) within the two estimates;
+    /// a table whose lines are too short to pay is computed texel by texel, bit for bit as
+    /// by columns.
+    #[test]
+    fn short_lines_are_the_column_values() {
+        for (nx, short) in [(40, false), (8, true)] {
+            let s = spec(nx, [0.1, 0.9], 3, true, 1e-7);
+            let lines = bake(&s, &|| false).expect("by lines");
+            let column = super::super::dfg::column_fn(&s);
+            for i in 0..nx {
+                let col = column(i);
+                for (j, c) in col.iter().enumerate() {
+                    let t = 3 * (j * nx + i);
+                    for k in 0..3 {
+                        let (v, e) = (lines.value[t + k], lines.error[t + k]);
+                        if short {
+                            assert_eq!(v.to_bits(), c.value[k].to_bits());
+                        } else {
+                            assert!((v - c.value[k]).abs() <= e + c.error[k]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
