@@ -86,6 +86,13 @@ const GRID_MIN_ROWS: usize = 24;
 /// 20.4 M). Below it the rows' texels below the break are computed one by one.
 const STRIP_MIN_ROWS: usize = 64;
 
+/// The narrow cloth lobes from this α up go on a grid above [`CLOTH_GRAZING_BREAK`] when
+/// they hold at least [`STRIP_MIN_ROWS`] rows: at 512² their 112 rows cost 2.2 M evaluations
+/// there against 4.1 M by rows; from 2e-4 (121 rows) the grid cost 7.0 M (the narrowest
+/// lobes' albedo is ~0 but for a layer near grazing that columns resolve badly); their
+/// 24 rows at 128² cost 14.7 M on a grid against 1.9 M by rows.
+const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
+
 /// Grids only pay on tables of at least this many texel columns: a grid's x-line needs
 /// ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids against 10.0 M
 /// without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at 32²). Below it
@@ -180,6 +187,9 @@ struct Plan {
     cloth_grid: Option<RoughnessLine>,
     /// The same rows by columns alone, at every texel column (where a grid would not pay).
     cloth_columns: Option<RoughnessLine>,
+    /// Narrow lobes of [`NARROW_GRID_MIN_ALPHA`], 1/16) on a grid above
+    /// [`CLOTH_GRAZING_BREAK`] (the strip serves them below).
+    narrow_grid: Option<RoughnessLine>,
     cloth_rows: Vec<usize>,
     strip: Option<RoughnessLine>,
 }
@@ -211,15 +221,13 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
             pair_rows,
             cloth_grid: None,
             cloth_columns: None,
+            narrow_grid: None,
             cloth_rows: Vec::new(),
             strip: None,
         };
     }
     let wide = |a: f64| (sheen_l::MAX_ALPHA..=sheen_wide::MAX_ALPHA).contains(&a);
     let wide = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows_where(&wide));
-    let cloth_rows = (0..ay.size)
-        .filter(|&j| !wide.as_ref().is_some_and(|g| g.row.contains(&j)))
-        .collect();
     let (cloth_grid, cloth_columns) = if nx >= GRID_MIN_COLUMNS {
         (wide, None)
     } else {
@@ -231,11 +239,22 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
     } else {
         None
     };
+    let band = rows_where(&|a| (NARROW_GRID_MIN_ALPHA..sheen_l::MAX_ALPHA).contains(&a));
+    let narrow_grid = if strip.is_some() && band.len() >= STRIP_MIN_ROWS && nx >= GRID_MIN_COLUMNS {
+        RoughnessLine::new(ay, RoughnessVar::Sqrt, band)
+    } else {
+        None
+    };
+    let on = |l: &Option<RoughnessLine>, j: usize| l.as_ref().is_some_and(|l| l.row.contains(&j));
+    let cloth_rows = (0..ay.size)
+        .filter(|&j| !on(&cloth_grid, j) && !on(&cloth_columns, j) && !on(&narrow_grid, j))
+        .collect();
     Plan {
         pair_grids,
         pair_rows,
         cloth_grid,
         cloth_columns,
+        narrow_grid,
         cloth_rows,
         strip,
     }
@@ -317,20 +336,22 @@ impl Ctx {
     }
 }
 
-/// A grid: the line across the table in x = √μ (cut at `breaks`) whose samples are the
-/// columns `column(μ, tol)` (`nc` channels per row of the column), the columns of one batch
-/// (one degree's new nodes, one interval's sample-test points or direct texel columns)
-/// computed in parallel. Channel `k·nc + c` of texel i is channel c of the column's k-th row.
+/// A grid: the line across the table in x = √μ from texel column `i0` on (`xs` holds every
+/// column's x; cut at `breaks`) whose samples are the columns `column(μ, tol)` (`nc`
+/// channels per row of the column), the columns of one batch (one degree's new nodes, one
+/// interval's sample-test points or direct texel columns) computed in parallel. Channel
+/// `k·nc + c` of its texel i (table column `i0 + i`) is channel c of the column's k-th row.
 fn grid(
     ax: &Axis,
     xs: &[f64],
+    i0: usize,
     breaks: &[f64],
     channels: usize,
     tol: f64,
     column: &(dyn Fn(f64, f64) -> LineValues + Sync),
 ) -> LineValues {
     interp1d::line_batched(
-        xs,
+        &xs[i0..],
         breaks,
         channels,
         tol,
@@ -344,7 +365,7 @@ fn grid(
         |is, t| {
             is.par_iter()
                 .with_min_len(1)
-                .map(|&i| line_sample(column(ax.coord(i), t)))
+                .map(|&i| line_sample(column(ax.coord(i0 + i), t)))
                 .collect()
         },
     )
@@ -476,17 +497,30 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
         p.pair_grids
             .par_iter()
             .map(|rl| {
-                grid(ax, &xs, &[GRAZING_BREAK], 2 * rl.ys.len(), tol, &|mu, t| {
-                    ctx.pair_column(rl, mu, t, stop)
-                })
+                grid(
+                    ax,
+                    &xs,
+                    0,
+                    &[GRAZING_BREAK],
+                    2 * rl.ys.len(),
+                    tol,
+                    &|mu, t| ctx.pair_column(rl, mu, t, stop),
+                )
             })
             .collect()
     };
     let pair_rows = || in_rows(&p.pair_rows, &|j| pair_row(&ctx, &xs, j, stop));
     let cloth_grid = || {
         p.cloth_grid.as_ref().map(|rl| {
-            grid(ax, &xs, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
+            grid(ax, &xs, 0, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
                 ctx.cloth_column(rl, mu, t, WIDE_CLOTH_NODE_TOL_FRACTION, stop)
+            })
+        })
+    };
+    let narrow_grid = || {
+        p.narrow_grid.as_ref().map(|rl| {
+            grid(ax, &xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
+                ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
             })
         })
     };
@@ -513,9 +547,17 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
         )
     };
     // every set of lines at once, so that one set's last lines overlap the others'
-    let ((pair_grids, pair_rows), ((cloth_grid, cloth_rows), (strip, cloth_columns))) = rayon::join(
+    let (
+        (pair_grids, pair_rows),
+        ((cloth_grid, cloth_rows), ((strip, cloth_columns), narrow_grid)),
+    ) = rayon::join(
         || rayon::join(pair_grids, pair_rows),
-        || rayon::join(|| rayon::join(cloth_grid, cloth_rows), strip),
+        || {
+            rayon::join(
+                || rayon::join(cloth_grid, cloth_rows),
+                || rayon::join(strip, narrow_grid),
+            )
+        },
     );
     let mut out = Dense {
         channels: if ctx.cloth { 3 } else { 2 },
@@ -528,6 +570,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
         out.evals += l.evals;
     }
     out.evals += cloth_grid.as_ref().map_or(0, |l| l.evals);
+    out.evals += narrow_grid.as_ref().map_or(0, |l| l.evals);
     out.evals += strip
         .iter()
         .chain(&cloth_columns)
@@ -541,6 +584,8 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let cloth_at = positions(cloth_grids.iter().map(|g| &g.0), ny);
     let strip_at = positions(p.strip.iter(), ny);
     let columns_at = positions(p.cloth_columns.iter(), ny);
+    let narrow_at = positions(p.narrow_grid.iter(), ny);
+    let nn = p.narrow_grid.as_ref().map_or(0, |l| l.ys.len());
     for j in 0..ny {
         for i in 0..nx {
             let (l, c) = locate(&pair_grids, &pair_rows, 2, i, j, &pair_at);
@@ -549,9 +594,10 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
             if !ctx.cloth {
                 continue;
             }
-            let (l, c) = match (strip_at[j], columns_at[j]) {
-                (Some((_, k)), _) if i < k0 => (&strip[i], k),
-                (_, Some((_, k))) => (&cloth_columns[i], k),
+            let (l, c) = match (strip_at[j], columns_at[j], narrow_at[j], &narrow_grid) {
+                (Some((_, k)), _, _, _) if i < k0 => (&strip[i], k),
+                (_, Some((_, k)), _, _) => (&cloth_columns[i], k),
+                (_, _, Some((_, k)), Some(g)) => (g, (i - k0) * nn + k),
                 _ => locate(&cloth_grids, &cloth_rows, 1, i, j, &cloth_at),
             };
             out.value.push(l.value[c]);
@@ -609,7 +655,7 @@ mod tests {
     /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/16, 96 rows) and the
     /// other rows by rows; at 512² three pair grids (the bands from 1/256 up hold 32, 64
     /// and 384 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
-    /// (128 narrow rows) their grazing texels by the strip.
+    /// (128 narrow rows) their grazing texels by the strip and most of the rest on a grid.
     #[test]
     fn plan_follows_the_rules() {
         for (n, grids) in [(128, 1), (512, 3)] {
@@ -622,11 +668,18 @@ mod tests {
             assert_eq!(p.pair_grids.last().unwrap().row.len(), 3 * n / 4);
             let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
             assert_eq!(wide.row.len(), 3 * n / 4);
-            assert_eq!(p.cloth_rows.len(), n / 4);
-            // the strip from 64 narrow rows on
+            // from 64 narrow rows on (512²): the strip below μ = 0.04, and above it a grid
+            // for α ≥ 1/1024 (r ≥ 1/32: all but 16 rows)
             assert_eq!(p.strip.is_some(), n == 512);
+            assert_eq!(p.narrow_grid.is_some(), n == 512);
+            let narrow_rows = if n == 512 { n / 4 - 16 } else { 0 };
+            assert_eq!(
+                p.narrow_grid.as_ref().map_or(0, |g| g.row.len()),
+                narrow_rows
+            );
+            assert_eq!(p.cloth_rows.len(), n / 4 - narrow_rows);
             if let Some(strip) = &p.strip {
-                assert_eq!(strip.row, p.cloth_rows);
+                assert_eq!(strip.row.len(), n / 4);
             }
         }
     }
@@ -642,26 +695,17 @@ mod tests {
         r
     }
 
-    /// Texels of a 128 × 96 table baked by lines — the pair and the wide cloth lobes on
-    /// grids (73 rows with α ≥ 1/16), the other rows by rows — lie within their own
-    /// estimates of the same channels computed texel by texel at a 100× tighter tolerance
-    /// (whose estimate is added), and every estimate is within the table's tolerance: all
-    /// rows of 6 columns (the grazing ones among them) and all columns of 6 rows (either side
-    /// of the bands' edges). The lines cost fewer evaluations than the texels would
+    /// Texels of a table baked by lines lie within their own estimates of the same channels
+    /// computed texel by texel at a 100× tighter tolerance (whose estimate is added), and
+    /// every estimate is within the table's tolerance: all rows of the columns `cols` and all
+    /// columns of the rows `rows`. The lines cost fewer evaluations than the texels would
     /// (estimated from the checked texels at the table's tolerance).
-    #[test]
-    fn lines_match_texel_values() {
-        let tol = 1e-7;
-        let (nx, ny) = (128, 96);
-        let s = spec(nx, [0.02, 1.0], ny, true, tol);
-        let p = plan(nx, &s.axes[1], true);
-        assert_eq!(p.pair_grids.len(), 1);
-        assert!(p.cloth_grid.is_some() && p.strip.is_none());
-        let table = bake(&s, &|| false).expect("a GGX dfg table goes by lines");
-        let ctx = Ctx::new(&s);
+    fn check_lines(s: &TableSpec, cols: &[usize], rows: &[usize]) {
+        let tol = s.tolerance;
+        let (nx, ny) = (s.axes[0].size, s.axes[1].size);
+        let table = bake(s, &|| false).expect("a GGX dfg table goes by lines");
+        let ctx = Ctx::new(s);
         let (mut checked, mut texel_evals) = (0u64, 0u64);
-        let cols = [0, 1, 4, 20, 77, 127];
-        let rows = [0, 11, 22, 23, 50, 95];
         for j in 0..ny {
             for i in 0..nx {
                 if !cols.contains(&i) && !rows.contains(&j) {
@@ -690,6 +734,30 @@ mod tests {
             "{} evaluations by lines vs ~{all:.0} texel by texel",
             table.evals
         );
+    }
+
+    /// A 128 × 96 table, r from 0.02 to 1: the pair and the wide cloth lobes on grids (73
+    /// rows with α ≥ 1/16), the other rows by rows; the columns checked include the grazing
+    /// ones, the rows lie either side of the bands' edges.
+    #[test]
+    fn lines_match_texel_values() {
+        let s = spec(128, [0.02, 1.0], 96, true, 1e-7);
+        let p = plan(128, &s.axes[1], true);
+        assert_eq!(p.pair_grids.len(), 1);
+        assert!(p.cloth_grid.is_some() && p.strip.is_none() && p.narrow_grid.is_none());
+        check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 11, 22, 23, 50, 95]);
+    }
+
+    /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/64, 1/16)
+    /// on a grid and the narrower rows by rows; the cloth channel by the strip below μ = 0.04
+    /// (the first 5 columns), on a grid above it for α ≥ 1/1024, by rows below.
+    #[test]
+    fn narrow_lines_match_texel_values() {
+        let s = spec(128, [0.02, 0.249], 70, true, 1e-7);
+        let p = plan(128, &s.axes[1], true);
+        assert_eq!(p.pair_grids.len(), 1);
+        assert!(p.strip.is_some() && p.narrow_grid.is_some() && !p.cloth_rows.is_empty());
+        check_lines(&s, &[0, 2, 4, 5, 60, 127], &[0, 3, 4, 35, 69]);
     }
 
     /// The strip's columns (the narrow lobes' cloth in y = ln α, 80 rows from α = 4e-4 to
