@@ -164,16 +164,29 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // texel (measured: 50,700 per 128-texel row, 82,800 per 512-texel row of
         // karis-envbrdf, 2026-11-30), never more than texel by texel. The cloth channel
         // interpolated too (narrow lobes along rows, wide ones along columns): filament-dfg
-        // 7.24 M cloth evaluations at 128² (442 per texel), 53.1 M at 512² (203)
+        // 7.24 M cloth evaluations at 128² (442 per texel), 53.1 M at 512² (203).
+        // With grids (src/table/dfg_lines.rs, tables of ≥ 128 columns; 2026-11-30): a fixed
+        // cost plus a little per texel, the pair from karis-envbrdf (5.6 M at 128², 15.5 M
+        // at 512²: 4.9 M + 40 per texel), the cloth channel from filament-dfg less that
+        // (7.1 M and 13.4 M: 6.7 M + 26 per texel); the fixed cost is spread over the rows
         K::Dfg => {
             let interpolated = crate::table::dfg_lines::interpolated(spec);
+            let nx = spec.axes[0].size as f64;
+            if interpolated && nx >= crate::table::dfg_lines::GRID_MIN_COLUMNS as f64 {
+                let (cloth, cloth_fixed) = if spec.cloth {
+                    (26.0, 6.7e6)
+                } else {
+                    (0.0, 0.0)
+                };
+                let rows = spec.axes.get(1).map_or(1.0, |a| a.size as f64);
+                return (40.0 + cloth, (4.9e6 + cloth_fixed) / rows);
+            }
             let cloth = match (spec.cloth, interpolated) {
                 (false, _) => 0.0,
                 (true, true) => 450.0,
                 (true, false) => 1_300.0,
             };
             if interpolated {
-                let nx = spec.axes[0].size as f64;
                 let row = (40_000.0 + 85.0 * nx).min(dfg * nx);
                 (cloth, row)
             } else {

@@ -11,20 +11,22 @@
 //!   needs about the columns and column nodes of a 128² one), while rows cost per row;
 //! - **strips**: columns alone, at the texel columns nearest grazing.
 //!
-//! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²;
-//! [`plan`] has the rules):
-//! - *Split-sum pair.* Wide lobes (α ≥ 1/16) on a grid in (√μ, √α): 2.9 M / 3.9 M
-//!   (rows: ~5 M / ~49 M). Narrower bands [1/64, 1/16) and [1/256, 1/64) on their own grids
-//!   where they hold at least [`GRID_MIN_ROWS`] rows (at 512²: 3.2 M and 3.4 M against 5.1 M
-//!   for the 32 rows of the lower band), rows otherwise; α < 1/256 always by rows (their
-//!   rows are cheap and their columns are not). One grid over every roughness cost 19.8 M /
+//! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²,
+//! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
+//! truncation estimate was doubled, which adds ~10% to any of them):
+//! - *Split-sum pair.* Wide lobes (α ≥ 1/16) on a grid in (√μ, √α): 3.1 M / 4.0 M (by rows
+//!   ~5 M / ~49 M). The bands [1/64, 1/16) and [1/256, 1/64) on grids of their own where
+//!   they hold at least [`GRID_MIN_ROWS`] rows (at 512²: 3.2 M and 5.6 M; by rows the lower
+//!   band cost 7.1 M), rows otherwise; α < 1/256 always by rows (their rows are cheap and
+//!   their columns are not): 3.7 M / 3.4 M. One grid over every roughness cost 19.8 M /
 //!   53.3 M: near grazing the split sum of a narrow lobe changes on the scale of α itself.
 //! - *Cloth, wide lobes* (1/16 ≤ α ≤ 1): a grid in (√μ, √α), whose kernel shares its node
-//!   data along a column ([`View`]): 3.4 M / 4.0 M (columns alone: 4.3 M / 17.4 M).
-//! - *Cloth, narrow lobes* (α < 1/16): rows in √μ above μ = 0.04, and below it a strip of
-//!   columns in ln α: 1.0 M + 1.4 M / 4.4 M + 5.6 M (the strip's texels one by one: 1.2 M /
-//!   20.4 M). Their albedo behaves like `exp(−c/α)` away from grazing, so a grid over them
-//!   cost 5.8 M / 20.6 M.
+//!   data along a column ([`View`]): 3.6 M / 4.2 M (columns alone: 4.3 M / 17.4 M).
+//! - *Cloth, narrow lobes* (α < 1/16): by rows in √μ above μ = 0.04 and texel by texel below:
+//!   2.3 M at 128². From 64 narrow rows on, below μ = 0.04 a strip of columns in ln α
+//!   (5.8 M at 512²; texel by texel 20.4 M) and above it a grid for α ≥ 1/1024 (2.2 M; by
+//!   rows 4.1 M), rows below (0.3 M). Their albedo behaves like `exp(−c/α)` away from
+//!   grazing: one grid in ln α over every narrow row cost 20.6 M at 512².
 //!
 //! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
 //! Lebesgue constant times the largest column estimate at its nodes); a column's is its
@@ -73,7 +75,9 @@ const NODE_TOL_FRACTION: f64 = 1.0 / 8.0;
 const WIDE_CLOTH_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 
 /// Bands of α (lower edges) whose split-sum pair may go on a grid of its own; below the
-/// lowest, rows. Measured as in the module doc.
+/// lowest, rows. Measured as in the module doc; with one band only, at 512², a grid from
+/// α = 0.001 up and rows below cost 15.6 M evaluations, from 0.004 up 11.2 M, from 1/16 up
+/// 18.4 M.
 const PAIR_BANDS: [f64; 3] = [1.0 / 256.0, 1.0 / 64.0, 1.0 / 16.0];
 
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
@@ -97,7 +101,7 @@ const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
 /// ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids against 10.0 M
 /// without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at 32²). Below it
 /// the pair goes by rows and the wide cloth lobes by columns alone.
-const GRID_MIN_COLUMNS: usize = 128;
+pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
 /// Whether [`bake`] bakes this table: 2D dfg tables whose split-sum channels go through the
 /// GGX kernels (analytic in √μ along a row, in √α along a column), with view cosines
