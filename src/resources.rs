@@ -166,8 +166,8 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // interpolated too (narrow lobes along rows, wide ones along columns): filament-dfg
         // 7.24 M cloth evaluations at 128² (442 per texel), 53.1 M at 512² (203).
         // With grids (src/table/dfg_lines.rs, tables of ≥ 128 columns; 2026-11-30): a fixed
-        // cost plus a little per texel, the pair from karis-envbrdf (5.6 M at 128², 15.5 M
-        // at 512²: 4.9 M + 40 per texel), the cloth channel from filament-dfg less that
+        // cost plus a little per texel, the pair from karis-envbrdf (5.0 M at 128², 13.5 M
+        // at 512²: 4.4 M + 35 per texel), the cloth channel from filament-dfg less that
         // (7.1 M and 13.4 M: 6.7 M + 26 per texel); the fixed cost is spread over the rows
         K::Dfg => {
             let interpolated = crate::table::dfg_lines::interpolated(spec);
@@ -179,7 +179,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
                     (0.0, 0.0)
                 };
                 let rows = spec.axes.get(1).map_or(1.0, |a| a.size as f64);
-                return (40.0 + cloth, (4.9e6 + cloth_fixed) / rows);
+                return (35.0 + cloth, (4.4e6 + cloth_fixed) / rows);
             }
             let cloth = match (spec.cloth, interpolated) {
                 (false, _) => 0.0,

@@ -14,12 +14,12 @@
 //! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²,
 //! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
-//! - *Split-sum pair.* Wide lobes (α ≥ 1/16) on a grid in (√μ, √α): 3.1 M / 4.0 M (by rows
-//!   ~5 M / ~49 M). The bands [1/64, 1/16) and [1/256, 1/64) on grids of their own where
-//!   they hold at least [`GRID_MIN_ROWS`] rows (at 512²: 3.2 M and 5.6 M; by rows the lower
-//!   band cost 7.1 M), rows otherwise; α < 1/256 always by rows (their rows are cheap and
-//!   their columns are not): 3.7 M / 3.4 M. One grid over every roughness cost 19.8 M /
-//!   53.3 M: near grazing the split sum of a narrow lobe changes on the scale of α itself.
+//! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α): 3.8 M / 5.4 M (by
+//!   rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by rows
+//!   7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
+//!   rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
+//!   3.4 M. One grid over every roughness cost 19.8 M / 53.3 M: near grazing the split sum of
+//!   a narrow lobe changes on the scale of α itself.
 //! - *Cloth, wide lobes* (1/16 ≤ α ≤ 1): a grid in (√μ, √α), whose kernel shares its node
 //!   data along a column ([`View`]): 3.6 M / 4.2 M (columns alone: 4.3 M / 17.4 M).
 //! - *Cloth, narrow lobes* (α < 1/16): by rows in √μ above μ = 0.04 and texel by texel below:
@@ -75,14 +75,16 @@ const NODE_TOL_FRACTION: f64 = 1.0 / 8.0;
 const WIDE_CLOTH_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 
 /// Bands of α (lower edges) whose split-sum pair may go on a grid of its own; below the
-/// lowest, rows. Measured as in the module doc; with one band only, at 512², a grid from
-/// α = 0.001 up and rows below cost 15.6 M evaluations, from 0.004 up 11.2 M, from 1/16 up
-/// 18.4 M.
-const PAIR_BANDS: [f64; 3] = [1.0 / 256.0, 1.0 / 64.0, 1.0 / 16.0];
+/// lowest, rows. Measured as in the module doc, and on the pair at 512² (evaluations):
+/// bands from [1/256, 1/64, 1/16] 16.2 M, [1/256, 1/64] 14.4 M, [1/256] 17.3 M, [1/64]
+/// 15.9 M, [1/16] 21.3 M; at 128², [1/64] (the lower band holds 8 rows) 6.2 M, [1/16]
+/// 6.8 M, [1/256] 11.7 M.
+const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 64.0];
 
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
-/// 24 rows do (at 128² the 16 rows of [1/64, 1/16) cost 1.2 M by rows, 2.2 M on a grid;
-/// at 512² its 64 rows 5.1 M by rows, 3.2 M on a grid).
+/// 24 rows do (at 512² the 32 rows of [1/256, 1/64) cost 7.1 M by rows, 5.6 M on a grid;
+/// at 128², when it was a band of its own, the 16 rows of [1/64, 1/16) 1.2 M by rows,
+/// 2.2 M on a grid).
 const GRID_MIN_ROWS: usize = 24;
 
 /// The strip only pays for at least this many narrow rows (at 128² its 32 rows cost 1.4 M
@@ -656,20 +658,20 @@ mod tests {
         }
     }
 
-    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/16, 96 rows) and the
-    /// other rows by rows; at 512² three pair grids (the bands from 1/256 up hold 32, 64
-    /// and 384 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
+    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/64, 112 rows) and the
+    /// other rows by rows; at 512² two pair grids (the bands from 1/256 and 1/64 up hold 32
+    /// and 448 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
     /// (128 narrow rows) their grazing texels by the strip and most of the rest on a grid.
     #[test]
     fn plan_follows_the_rules() {
-        for (n, grids) in [(128, 1), (512, 3)] {
+        for (n, grids) in [(128, 1), (512, 2)] {
             let mut s = spec(n, [0.0, 1.0], n, true, 1e-7);
             s.axes[1].convention = Convention::Centers;
             let p = plan(n, &s.axes[1], true);
             assert_eq!(p.pair_grids.len(), grids, "{n}²");
             let on_grids: usize = p.pair_grids.iter().map(|g| g.row.len()).sum();
             assert_eq!(on_grids + p.pair_rows.len(), n, "every row once");
-            assert_eq!(p.pair_grids.last().unwrap().row.len(), 3 * n / 4);
+            assert_eq!(p.pair_grids.last().unwrap().row.len(), 7 * n / 8);
             let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
             assert_eq!(wide.row.len(), 3 * n / 4);
             // from 64 narrow rows on (512²): the strip below μ = 0.04, and above it a grid
@@ -740,16 +742,16 @@ mod tests {
         );
     }
 
-    /// A 128 × 96 table, r from 0.02 to 1: the pair and the wide cloth lobes on grids (73
-    /// rows with α ≥ 1/16), the other rows by rows; the columns checked include the grazing
-    /// ones, the rows lie either side of the bands' edges.
+    /// A 128 × 96 table, r from 0.02 to 1: the pair on a grid (85 rows with α ≥ 1/64), the
+    /// wide cloth lobes on a grid (73 rows with α ≥ 1/16), the other rows by rows; the columns
+    /// checked include the grazing ones, the rows lie either side of both edges.
     #[test]
     fn lines_match_texel_values() {
         let s = spec(128, [0.02, 1.0], 96, true, 1e-7);
         let p = plan(128, &s.axes[1], true);
         assert_eq!(p.pair_grids.len(), 1);
         assert!(p.cloth_grid.is_some() && p.strip.is_none() && p.narrow_grid.is_none());
-        check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 11, 22, 23, 50, 95]);
+        check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 10, 11, 22, 23, 95]);
     }
 
     /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/64, 1/16)
