@@ -314,7 +314,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     };
     let method = if spec.kind == TableKind::Dfg && spec.cloth {
         let interpolated = if crate::table::dfg_lines::interpolated(spec) {
-            "interpolated by the same rule: wide lobes (1/16 <= alpha <= 1) on a grid as above (columns in y = sqrt(alpha), their nodes at tolerance/4 of the column's) on tables of at least 128 columns, else along each column in y = sqrt(alpha) (nodes at tolerance/4); narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) above mu = 0.04 (nodes at tolerance/8) and below it texel by texel, or, from 64 narrow rows on, along each texel column in y = ln(alpha) (nodes at tolerance/8); each node or direct texel: "
+            "interpolated by the same rule: wide lobes (1/16 <= alpha <= 1) on a grid as above (columns in y = sqrt(alpha), their nodes at tolerance/4 of the column's) on tables of at least 128 columns, else along each column in y = sqrt(alpha) (nodes at tolerance/4); narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) above mu = 0.04 (nodes at tolerance/8) and below it texel by texel; or, from 64 narrow rows on, below mu = 0.01 along each texel column in y = ln(alpha) and above it on a grid for alpha >= 1/1024 (columns in y = sqrt(alpha)), by rows below (nodes at tolerance/8); each node or direct texel: "
         } else {
             ""
         };

@@ -23,9 +23,10 @@
 //! - *Cloth, wide lobes* (1/16 ≤ α ≤ 1): a grid in (√μ, √α), whose kernel shares its node
 //!   data along a column ([`View`]): 3.6 M / 4.2 M (columns alone: 4.3 M / 17.4 M).
 //! - *Cloth, narrow lobes* (α < 1/16): by rows in √μ above μ = 0.04 and texel by texel below:
-//!   2.3 M at 128². From 64 narrow rows on, below μ = 0.04 a strip of columns in ln α
-//!   (5.8 M at 512²; texel by texel 20.4 M) and above it a grid for α ≥ 1/1024 (2.2 M; by
-//!   rows 4.1 M), rows below (0.3 M). Their albedo behaves like `exp(−c/α)` away from
+//!   2.3 M at 128². From 64 narrow rows on, below μ = 0.01 a strip of columns in ln α, and
+//!   above it a grid for α ≥ 1/1024 and rows below: at 512² 2.5 M + 3.8 M + 0.8 M (with the
+//!   strip up to μ = 0.04: 5.8 M + 2.2 M + 0.3 M; that strip's texels one by one 20.4 M,
+//!   the grid's rows by rows 4.1 M). Their albedo behaves like `exp(−c/α)` away from
 //!   grazing: one grid in ln α over every narrow row cost 20.6 M at 512².
 //!
 //! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
@@ -64,6 +65,11 @@ const GRAZING_BREAK: f64 = 0.1;
 /// first texel spent 46 M of 138 M evaluations on nodes near grazing.
 const CLOTH_GRAZING_BREAK: f64 = 0.2;
 
+/// Where the strip ends, in x = √μ, when there is one: μ = 0.01. With the narrow lobes
+/// above it on a grid, a lower break pays (512², narrow cloth evaluations: 7.2 M at x = 0.1,
+/// 7.7 M at 0.15, 8.4 M at 0.2; the process's CPU time 0.57 against 0.63 s, best of 5).
+const STRIP_BREAK: f64 = 0.1;
+
 /// Interpolation nodes (and sample-test points) are computed at this fraction of the
 /// tolerance of the line they serve, not interp1d's 1/4: a quadrature's or a column's
 /// estimate comes close to what it was asked for, and at 1/4 the Lebesgue constant (2.4 at
@@ -92,9 +98,9 @@ const GRID_MIN_ROWS: usize = 24;
 /// 20.4 M). Below it the rows' texels below the break are computed one by one.
 const STRIP_MIN_ROWS: usize = 64;
 
-/// The narrow cloth lobes from this α up go on a grid above [`CLOTH_GRAZING_BREAK`] when
-/// they hold at least [`STRIP_MIN_ROWS`] rows: at 512² their 112 rows cost 2.2 M evaluations
-/// there against 4.1 M by rows; from 2e-4 (121 rows) the grid cost 7.0 M (the narrowest
+/// The narrow cloth lobes from this α up go on a grid above the strip when they hold at
+/// least [`STRIP_MIN_ROWS`] rows: at 512² their 112 rows cost 2.2 M evaluations above
+/// μ = 0.04 against 4.1 M by rows; from 2e-4 (121 rows) the grid cost 7.0 M (the narrowest
 /// lobes' albedo is ~0 but for a layer near grazing that columns resolve badly); their
 /// 24 rows at 128² cost 14.7 M on a grid against 1.9 M by rows.
 const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
@@ -185,7 +191,7 @@ impl RoughnessLine {
 
 /// Which lines serve which rows, per channel. Every row is on exactly one line per channel:
 /// a grid, or its own row; the strip's columns serve the rows of `strip` below
-/// [`CLOTH_GRAZING_BREAK`] instead of those rows' lines.
+/// [`STRIP_BREAK`] instead of those rows' lines.
 #[derive(Debug)]
 struct Plan {
     pair_grids: Vec<RoughnessLine>,
@@ -193,8 +199,8 @@ struct Plan {
     cloth_grid: Option<RoughnessLine>,
     /// The same rows by columns alone, at every texel column (where a grid would not pay).
     cloth_columns: Option<RoughnessLine>,
-    /// Narrow lobes of [`NARROW_GRID_MIN_ALPHA`], 1/16) on a grid above
-    /// [`CLOTH_GRAZING_BREAK`] (the strip serves them below).
+    /// Narrow lobes of [`NARROW_GRID_MIN_ALPHA`], 1/16) on a grid above [`STRIP_BREAK`] (the
+    /// strip serves them below).
     narrow_grid: Option<RoughnessLine>,
     cloth_rows: Vec<usize>,
     strip: Option<RoughnessLine>,
@@ -402,9 +408,10 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
 }
 
 /// The cloth channel of row j along x = √μ above [`CLOTH_GRAZING_BREAK`] ([`cloth_texel`]
-/// values, nodes at [`NODE_TOL_FRACTION`]); below it, the texels are computed one by one if
-/// `direct_below`, else left 0 (the strip computes them).
-fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, direct_below: bool, stop: Stop) -> LineValues {
+/// values, nodes at [`NODE_TOL_FRACTION`]), the texels below it computed one by one; or, for
+/// a row the strip serves (`strip_end` = Some(k0)), above `xs[k0]` only, leaving the texels
+/// below 0 (the strip computes them).
+fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: Stop) -> LineValues {
     let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
     let at = |mu: f64, t: f64| {
         if stop() {
@@ -412,7 +419,8 @@ fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, direct_below: bool, stop: Stop) ->
         }
         cloth_sample(cloth_texel(&View::new(mu), alpha, t))
     };
-    let k0 = xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK);
+    let direct_below = strip_end.is_none();
+    let k0 = strip_end.unwrap_or_else(|| xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK));
     let mut out = interp1d::line_with_node_tol(
         &xs[k0..],
         &[],
@@ -487,7 +495,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let p = plan(nx, ay, ctx.cloth);
     let xs: Vec<f64> = (0..nx).map(|i| ax.coord(i).sqrt()).collect();
     let k0 = if p.strip.is_some() {
-        xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK)
+        xs.partition_point(|&x| x < STRIP_BREAK)
     } else {
         0
     };
@@ -533,7 +541,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let cloth_rows = || {
         let strip_rows = p.strip.as_ref().map_or(&[][..], |s| &s.row[..]);
         in_rows(&p.cloth_rows, &|j| {
-            cloth_row(&ctx, &xs, j, !strip_rows.contains(&j), stop)
+            cloth_row(&ctx, &xs, j, strip_rows.contains(&j).then_some(k0), stop)
         })
     };
     let columns = |rl: &Option<RoughnessLine>, n: usize, fraction: f64| -> Vec<LineValues> {
@@ -674,7 +682,7 @@ mod tests {
             assert_eq!(p.pair_grids.last().unwrap().row.len(), 7 * n / 8);
             let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
             assert_eq!(wide.row.len(), 3 * n / 4);
-            // from 64 narrow rows on (512²): the strip below μ = 0.04, and above it a grid
+            // from 64 narrow rows on (512²): the strip below μ = 0.01, and above it a grid
             // for α ≥ 1/1024 (r ≥ 1/32: all but 16 rows)
             assert_eq!(p.strip.is_some(), n == 512);
             assert_eq!(p.narrow_grid.is_some(), n == 512);
@@ -755,15 +763,15 @@ mod tests {
     }
 
     /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/64, 1/16)
-    /// on a grid and the narrower rows by rows; the cloth channel by the strip below μ = 0.04
-    /// (the first 5 columns), on a grid above it for α ≥ 1/1024, by rows below.
+    /// on a grid and the narrower rows by rows; the cloth channel by the strip below μ = 0.01
+    /// (the first column), on a grid above it for α ≥ 1/1024, by rows below.
     #[test]
     fn narrow_lines_match_texel_values() {
         let s = spec(128, [0.02, 0.249], 70, true, 1e-7);
         let p = plan(128, &s.axes[1], true);
         assert_eq!(p.pair_grids.len(), 1);
         assert!(p.strip.is_some() && p.narrow_grid.is_some() && !p.cloth_rows.is_empty());
-        check_lines(&s, &[0, 2, 4, 5, 60, 127], &[0, 3, 4, 35, 69]);
+        check_lines(&s, &[0, 1, 2, 5, 60, 127], &[0, 3, 4, 35, 69]);
     }
 
     /// The strip's columns (the narrow lobes' cloth in y = ln α, 80 rows from α = 4e-4 to
