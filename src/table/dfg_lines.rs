@@ -74,11 +74,13 @@ const STRIP_BREAK: f64 = 0.1;
 /// tolerance of the line they serve, not interp1d's 1/4: a quadrature's or a column's
 /// estimate comes close to what it was asked for, and at 1/4 the Lebesgue constant (2.4 at
 /// degree 8, 3.66 at 64) times it exceeds the half of the tolerance beyond which interp1d
-/// gives up on an interval (measured: most narrow cloth rows then went texel by texel). The
-/// wide cloth lobes' columns use 1/4 for their own nodes: their kernel's estimates sit well
-/// below what they are asked for (3.4 M against 4.1 M evaluations at 128²).
+/// recomputes the nodes (measured: most narrow cloth rows then went texel by texel, before
+/// that recomputation existed). The columns of the split sum and of the wide cloth lobes use
+/// 1/4 for their own nodes: their kernels' estimates sit well below what they are asked for
+/// (at 128², wide cloth 3.4 M against 4.1 M evaluations, the pair's grid 3.7 M against 3.8 M;
+/// the narrow lobes' columns cost more at 1/4).
 const NODE_TOL_FRACTION: f64 = 1.0 / 8.0;
-const WIDE_CLOTH_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
+const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 
 /// Bands of α (lower edges) whose split-sum pair may go on a grid of its own; below the
 /// lowest, rows. Measured as in the module doc, and on the pair at 512² (evaluations):
@@ -302,7 +304,7 @@ impl Ctx {
             &[],
             2,
             tol,
-            tol * NODE_TOL_FRACTION,
+            tol * COLUMN_NODE_TOL_FRACTION,
             |y, t| {
                 if stop() {
                     return blank(2);
@@ -527,7 +529,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let cloth_grid = || {
         p.cloth_grid.as_ref().map(|rl| {
             grid(ax, &xs, 0, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
-                ctx.cloth_column(rl, mu, t, WIDE_CLOTH_NODE_TOL_FRACTION, stop)
+                ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop)
             })
         })
     };
@@ -557,7 +559,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let strip = || {
         rayon::join(
             || columns(&p.strip, k0, NODE_TOL_FRACTION),
-            || columns(&p.cloth_columns, nx, WIDE_CLOTH_NODE_TOL_FRACTION),
+            || columns(&p.cloth_columns, nx, COLUMN_NODE_TOL_FRACTION),
         )
     };
     // every set of lines at once, so that one set's last lines overlap the others'
