@@ -38,7 +38,15 @@
 //! whose integrand is analytic in ϑ except at s = −s_min, −s_max, −s₀, at a distance
 //! proportional to s_min rather than s_min² from the interval. The trapezoid rule on this
 //! even periodic integrand converges geometrically (Trefethen & Weideman 2014, "The
-//! exponentially convergent trapezoidal rule", thm. 3.2). It is applied with 1, 2, 4, …, 64
+//! exponentially convergent trapezoidal rule", thm. 3.2), at a rate set by the distance of
+//! the nearest singularity from the real axis. All of them lie on one line: with u = π − ϑ,
+//! s = −σ (σ ∈ {s₀, s_min, s_max}) at u = ±i b_σ, `tanh(b_σ/2) = √(y/(2 + y))`,
+//! `y = (s_min + σ)/h`; near grazing b_{s₀} is small. There the rule is taken in w,
+//! `tan(u/2) = ε tan(w/2)` (a Möbius map of the period onto itself: nodes gather at s_min),
+//! with `ε = √(tanh(b_{s₀}/2) tanh(b_{s_max}/2))`, which puts the nearest and the farthest
+//! singularity at the same distance `2 atanh(√(tanh(b_{s₀}/2)/tanh(b_{s_max}/2)))` from the
+//! real w axis, wider than b_{s₀} (Trefethen & Weideman 2014, §3, on conformal maps that widen
+//! the strip). The rule is applied with 1, 2, 4, …, 64
 //! intervals (nested) and T_N accepted from N = 4 on when |T_N − T_{N/2}| (the error of the
 //! coarser rule, an over-estimate of T_N's) is within the inner tolerance — at N = 4 also
 //! `|T_2 − T_1|²/max|R|`, which guards against T_4 and T_2 agreeing by chance before the
@@ -82,6 +90,11 @@ use std::sync::OnceLock;
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
 pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+
+/// The Möbius map of the azimuthal rule is used where the nearest singularity has
+/// `tanh(b₀/2)` below this (b₀ ≲ 0.4: lines near grazing); elsewhere its gain did not pay
+/// for its arithmetic (measured with examples/polar_cost.rs).
+const MOBIUS_BELOW: f64 = 0.2;
 
 /// Finest trapezoid level: 2^6 intervals on [0, π].
 const MAX_LOG2: usize = 6;
@@ -210,15 +223,40 @@ impl Texel {
         let s_max = 2.0 * (hcv * hc + hsv * hs);
         let h = 0.5 * (s_max - s_min).max(0.0);
         let opc = one_plus_cos();
+        // Möbius map of the period, u = π − ϑ, tan(u/2) = ε tan(w/2) (trapezoid nodes in w):
+        // every singularity sits on the imaginary u axis, at u = i b_σ with
+        // tanh(b_σ/2) = √(y_σ/(2 + y_σ)), y_σ = (s_min + σ)/h, σ ∈ {s₀, s_min, s_max}; the map
+        // sends those with tanh(b/2) < ε to distance 2 atanh(tanh(b/2)/ε) from the real w axis
+        // and the others to 2 atanh(ε/tanh(b/2)), so ε = √(tanh(b₀/2) tanh(b_max/2)) gives the
+        // nearest (s₀) and the farthest (s_max) the same distance — the widest strip, hence the
+        // fastest geometric rate (Trefethen & Weideman 2014, §3) — and ε = 1 is the identity.
+        let eps = if h > 0.0 {
+            let y0 = (s_min + s0) / h;
+            let y3 = (s_min + s_max) / h;
+            let t0 = (y0 / (2.0 + y0)).sqrt();
+            if t0 < MOBIUS_BELOW {
+                (t0 * (y3 / (2.0 + y3)).sqrt()).sqrt().clamp(1e-6, 1.0)
+            } else {
+                1.0
+            }
+        } else {
+            1.0
+        };
+        let e2 = eps * eps;
         let fmax = std::cell::Cell::new(0.0f64);
         let r_at = |k: usize| {
-            let sq = s_min + h * opc[k];
+            // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
+            // 1 − cos u = 2ε² sin²(w/2)/den and du/dw = ε/den, den = cos²(w/2) + ε² sin²(w/2)
+            let (cw, sw) = (0.5 * opc[k], 0.5 * opc[NTRAP - k]);
+            let den = cw + e2 * sw;
+            let sq = s_min + h * 2.0 * e2 * sw / den;
+            let jac = eps / den;
             let mut p = p2[7];
             for c in (0..7).rev() {
                 p = p * sq + p2[c];
             }
             let d = sq + s0;
-            let v = p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt());
+            let v = jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt());
             fmax.set(fmax.get().max(v.abs()));
             v
         };
