@@ -243,14 +243,19 @@ impl Texel {
             1.0
         };
         let e2 = eps * eps;
+        let mobius = eps < 1.0;
         let fmax = std::cell::Cell::new(0.0f64);
         let r_at = |k: usize| {
-            // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
-            // 1 − cos u = 2ε² sin²(w/2)/den and du/dw = ε/den, den = cos²(w/2) + ε² sin²(w/2)
-            let (cw, sw) = (0.5 * opc[k], 0.5 * opc[NTRAP - k]);
-            let den = cw + e2 * sw;
-            let sq = s_min + h * 2.0 * e2 * sw / den;
-            let jac = eps / den;
+            let (sq, jac) = if mobius {
+                // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
+                // 1 − cos u = 2ε² sin²(w/2)/den, du/dw = ε/den, den = cos²(w/2) + ε² sin²(w/2)
+                let (cw, sw) = (0.5 * opc[k], 0.5 * opc[NTRAP - k]);
+                let den = 1.0 / (cw + e2 * sw);
+                (s_min + h * 2.0 * e2 * sw * den, eps * den)
+            } else {
+                // u = w: 1 − cos u = 1 + cos ϑ at ϑ = kπ/64 (the nodes in reverse order)
+                (s_min + h * opc[k], 1.0)
+            };
             let mut p = p2[7];
             for c in (0..7).rev() {
                 p = p * sq + p2[c];
@@ -339,7 +344,7 @@ fn i5_psi(dm: f64, q: f64, r: f64, p_m_q: f64, a2: f64, inner_tol: f64) -> (f64,
 /// Number of top Chebyshev coefficients whose largest bounds the outer rule's error.
 const TAIL: usize = 4;
 
-/// `cos(π j m/n)` for the top [`TAIL`] degrees `m = n − TAIL + 1 ..= n` of every level
+/// `(2/n)·w_j·cos(π j m/n)` (w_j = ½ at the ends, else 1) for the top [`TAIL`] degrees `m = n − TAIL + 1 ..= n` of every level
 /// `n = 2^k` (k = 0..=MAX_LEVEL, rows of `TAIL·(n + 1)`; empty below n = TAIL), taken from the
 /// Clenshaw–Curtis nodes `cos(iπ/2^MAX_LEVEL)` so that they are exact to the same bits.
 fn tail_cos() -> &'static Vec<Vec<f64>> {
@@ -356,7 +361,8 @@ fn tail_cos() -> &'static Vec<Vec<f64>> {
                         for j in 0..=n {
                             let p = (j * m) % (2 * n);
                             let i = if p <= n { p } else { 2 * n - p };
-                            v.push(r.x[i * stride]);
+                            let w = if j == 0 || j == n { 1.0 } else { 2.0 };
+                            v.push(w / n as f64 * r.x[i * stride]);
                         }
                     }
                 }
@@ -412,28 +418,31 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
                 q[c] += w * vals[j * stride][c];
             }
         }
-        // the interpolant's top Chebyshev coefficients c_m = (2/n) Σ'' v_j cos(π j m/n)
-        let mut tail = [0.0f64; 2];
+        // the interpolant's top Chebyshev coefficients c_m = (2/n) Σ'' v_j cos(π j m/n);
+        // |∫(f − p_n)| ≤ (b − a)·max|f − p_n| ≤ (b − a)·2Σ_{m>n}|a_m|, the sum taken as the
+        // largest of the top TAIL computed coefficients (below the last level, the first row
+        // over tol settles that the level is not accepted)
+        let mut err = [0.0f64; 2];
         for row in tc[k].chunks_exact(n + 1) {
             let mut cm = [0.0f64; 2];
-            for j in 0..=n {
-                let wj = if j == 0 || j == n { 0.5 } else { 1.0 };
-                for c in 0..2 {
-                    cm[c] += wj * row[j] * vals[j * stride][c];
-                }
+            for (j, &t) in row.iter().enumerate() {
+                let v = vals[j * stride];
+                cm[0] += t * v[0];
+                cm[1] += t * v[1];
             }
             for c in 0..2 {
-                tail[c] = tail[c].max((2.0 / n as f64) * cm[c].abs());
+                err[c] = err[c].max(4.0 * half * cm[c].abs());
+            }
+            if !(err[0] <= tol && err[1] <= tol) && k < OUTER_MAX_LEVEL {
+                break;
             }
         }
-        // |∫(f − p_n)| ≤ (b − a)·max|f − p_n| ≤ (b − a)·2Σ_{m>n}|a_m|, the sum taken as the
-        // largest of the top TAIL computed coefficients
         last = Estimate {
             value: [q[0] * half, q[1] * half],
-            error: [4.0 * half * tail[0], 4.0 * half * tail[1]],
+            error: err,
             evals: 0,
         };
-        if last.error.iter().all(|&e| e <= tol) && last.value.iter().all(|v| v.is_finite()) {
+        if err.iter().all(|&e| e <= tol) && last.value.iter().all(|v| v.is_finite()) {
             break;
         }
     }
