@@ -230,21 +230,20 @@ impl Texel {
         // and the others to 2 atanh(ε/tanh(b/2)), so ε = √(tanh(b₀/2) tanh(b_max/2)) gives the
         // nearest (s₀) and the farthest (s_max) the same distance — the widest strip, hence the
         // fastest geometric rate (Trefethen & Weideman 2014, §3) — and ε = 1 is the identity.
-        let eps = if h > 0.0 {
+        // tanh(b₀/2) < MOBIUS_BELOW ⟺ y₀/(2 + y₀) < MOBIUS_BELOW², tested without a division
+        let b2 = MOBIUS_BELOW * MOBIUS_BELOW;
+        let eps = if h > 0.0 && (1.0 - b2) * (s_min + s0) < 2.0 * b2 * h {
             let y0 = (s_min + s0) / h;
             let y3 = (s_min + s_max) / h;
-            let t0 = (y0 / (2.0 + y0)).sqrt();
-            if t0 < MOBIUS_BELOW {
-                (t0 * (y3 / (2.0 + y3)).sqrt()).sqrt().clamp(1e-6, 1.0)
-            } else {
-                1.0
-            }
+            ((y0 / (2.0 + y0)) * (y3 / (2.0 + y3)))
+                .sqrt()
+                .sqrt()
+                .clamp(1e-6, 1.0)
         } else {
             1.0
         };
         let e2 = eps * eps;
         let mobius = eps < 1.0;
-        let fmax = std::cell::Cell::new(0.0f64);
         let r_at = |k: usize| {
             let (sq, jac) = if mobius {
                 // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
@@ -262,22 +261,32 @@ impl Texel {
             }
             let d = sq + s0;
             let v = jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt());
-            fmax.set(fmax.get().max(v.abs()));
             v
         };
         // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
         // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
         // coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|
         let mut stride = NTRAP;
-        let mut sum = 0.5 * (r_at(0) + r_at(NTRAP));
+        let (r_0, r_n) = (r_at(0), r_at(NTRAP));
+        let mut sum = 0.5 * (r_0 + r_n);
+        // max|R| over the 5 nodes of T_4 (for the guard)
+        let mut fmax = r_0.abs().max(r_n.abs());
         let mut evals = 2u64;
         // T_{N/4}, T_{N/2}
         let mut t_prev = [0.0f64, sum];
         let mut level = 0;
         while stride > 1 {
             let half = stride / 2;
-            for k in (half..NTRAP).step_by(stride) {
-                sum += r_at(k);
+            if level < 2 {
+                for k in (half..NTRAP).step_by(stride) {
+                    let v = r_at(k);
+                    fmax = fmax.max(v.abs());
+                    sum += v;
+                }
+            } else {
+                for k in (half..NTRAP).step_by(stride) {
+                    sum += r_at(k);
+                }
             }
             evals += (NTRAP / stride) as u64;
             stride = half;
@@ -286,7 +295,7 @@ impl Texel {
             let mut d = (cur - t_prev[1]).abs();
             if level == 2 {
                 let d2 = (t_prev[1] - t_prev[0]).abs();
-                d = d.max(d2 * d2 / fmax.get().max(inner_tol));
+                d = d.max(d2 * d2 / fmax.max(inner_tol));
             }
             if level >= 2 && d <= inner_tol && cur.is_finite() {
                 let i5 = a2 * (g_m * j2 + dg_m * j1 + cur);
