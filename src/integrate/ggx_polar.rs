@@ -400,22 +400,23 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
     out: &mut Estimate<2>,
     lines: &mut u64,
 ) {
-    const NMAX: usize = (1 << MAX_LEVEL) + 1;
+    // values at the nodes of the finest outer level, local index l ↔ node cos(lπ/2^6)
+    // (the rules' global index l·G)
+    const NV: usize = (1 << OUTER_MAX_LEVEL) + 1;
+    const G: usize = 1 << (MAX_LEVEL - OUTER_MAX_LEVEL);
     let r = rules();
     let tc = tail_cos();
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    let mut vals = [[0.0f64; 2]; NMAX];
+    let mut vals = [[0.0f64; 2]; NV];
     let mut last = Estimate::<2>::zero();
     for k in 1..=OUTER_MAX_LEVEL {
-        let stride = 1usize << (MAX_LEVEL - k);
-        // the new nodes of level k (all three at k = 1)
-        let mut i = 0;
-        while i < NMAX {
-            if k == 1 || (i / stride) % 2 == 1 {
-                vals[i] = f(mid + half * r.x[i]);
-                *lines += 1;
-            }
-            i += stride;
+        let ls = 1usize << (OUTER_MAX_LEVEL - k);
+        // the new nodes of level k: all three at k = 1, else the odd multiples of ls
+        let (mut l, step) = if k == 1 { (0, ls) } else { (ls, 2 * ls) };
+        while l < NV {
+            vals[l] = f(mid + half * r.x[l * G]);
+            *lines += 1;
+            l += step;
         }
         if k < OUTER_MIN_LEVEL {
             continue;
@@ -424,7 +425,7 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
         let mut q = [0.0f64; 2];
         for (j, &w) in r.w[k].iter().enumerate() {
             for c in 0..2 {
-                q[c] += w * vals[j * stride][c];
+                q[c] += w * vals[j * ls][c];
             }
         }
         // the interpolant's top Chebyshev coefficients c_m = (2/n) Σ'' v_j cos(π j m/n);
@@ -435,7 +436,7 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
         for row in tc[k].chunks_exact(n + 1) {
             let mut cm = [0.0f64; 2];
             for (j, &t) in row.iter().enumerate() {
-                let v = vals[j * stride];
+                let v = vals[j * ls];
                 cm[0] += t * v[0];
                 cm[1] += t * v[1];
             }
