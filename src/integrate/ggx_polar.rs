@@ -62,7 +62,9 @@
 //! lobe's poles sit at sinh t = ±i·(lobe width)/w), so each panel is integrated whole by
 //! nested Clenshaw–Curtis rules of 9, 17, 33, 65 nodes in t (Trefethen 2008, "Is Gauss
 //! quadrature better than Clenshaw–Curtis?"), both channels at once, bisected only where
-//! 65 nodes do not reach the tolerance.
+//! 65 nodes do not reach the tolerance; a panel at most 1.5 long in t (wide lobes), where one
+//! G7/K15 panel usually passes with 15 nodes, by the adaptive Gauss–Kronrod rule
+//! ([`integrate`], estimate |K15 − G7|) instead.
 //!
 //! **Error.** The outer rule's estimate plus a bound on the inner rules'. Clenshaw–Curtis
 //! with n + 1 nodes is the exact integral of the interpolant p_n at the Chebyshev points, so
@@ -89,7 +91,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail, bisected where needed; adaptive Gauss-Kronrod on panels at most 1.5 long) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
 
 /// The Möbius map of the azimuthal rule is used where the nearest singularity has
 /// `tanh(b₀/2)` below this (b₀ ≲ 0.4: lines near grazing); elsewhere its gain did not pay
@@ -387,6 +389,11 @@ const OUTER_MAX_LEVEL: usize = 6;
 /// Most θl lines one panel may spend (bisections included): a pathological integrand costs
 /// bounded time and reports the error it reached.
 const OUTER_MAX_LINES: u64 = 1 << 12;
+/// A panel at most this long in t (wide lobes, short panels) is integrated by the adaptive
+/// G7/K15 rule instead: one K15 panel (15 lines) usually passes there, where the
+/// Clenshaw–Curtis estimate needs 33 nodes (at 3.0 the K15 panels were bisected more often
+/// than not: more lines; measured with examples/polar_cost.rs).
+const SHORT_PANEL: f64 = 1.5;
 
 /// ∫ₐᵇ f (both channels) by nested Clenshaw–Curtis levels [`OUTER_MIN_LEVEL`]`..=`
 /// [`OUTER_MAX_LEVEL`], stopping at the first whose estimate (the module doc's "Error") is at
@@ -535,8 +542,23 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             [l.k * jac * l.i0, l.k * jac * l.i5]
         };
         let mut e = Estimate::<2>::zero();
-        let mut lines = 0u64;
-        cc_tail(&mut f, (0.0, t_max), outer_tol, 12, &mut e, &mut lines);
+        if t_max <= SHORT_PANEL {
+            e = integrate(
+                &mut f,
+                0.0,
+                t_max,
+                Tolerance {
+                    abs: outer_tol,
+                    initial_panels: 1,
+                    max_depth: 24,
+                    noise_floor: 0.0,
+                    max_evals: OUTER_MAX_LINES,
+                },
+            );
+        } else {
+            let mut lines = 0u64;
+            cc_tail(&mut f, (0.0, t_max), outer_tol, 12, &mut e, &mut lines);
+        }
         for c in 0..2 {
             total.value[c] += e.value[c];
             total.error[c] += e.error[c];
