@@ -262,8 +262,7 @@ impl Texel {
                 p = p * sq + p2[c];
             }
             let d = sq + s0;
-            let v = jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt());
-            v
+            jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt())
         };
         // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
         // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
