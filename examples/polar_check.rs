@@ -2,10 +2,13 @@
 //! grid against the adaptive 2D integrator (`dfg::split_sum_adaptive`) at a 1000× tighter
 //! tolerance: for each point and channel, |kernel − reference| must be within the kernel's
 //! estimate plus the reference's (+ 1e-12 rounding), and the estimate within the requested
-//! tolerance. Prints the violations, the largest |error|/estimate and the failures (`Err`).
+//! tolerance. Prints the violations, the declined points (`Err`: the caller falls back) and
+//! the largest |error|/(estimate + reference's estimate + rounding). With `probe`, one point
+//! at tolerances 1e-7 … 1e-12, kernel and reference side by side.
 //!
 //! ```text
 //! cargo run --release --example polar_check -- [NMU] [NALPHA]   (defaults 24 24)
+//! cargo run --release --example polar_check -- MU ALPHA probe
 //! ```
 
 use brdfbake::integrate::dfg_kernel::Smith;
@@ -87,5 +90,5 @@ fn main() {
             }
         }
     }
-    println!("{} points x {} tolerances x 2 channels: {bad} outside their estimate or tolerance, {err} Err; largest |error|/estimate {worst:.3e}:\n  {worst_line}", pts.len(), tols.len());
+    println!("{} points x {} tolerances x 2 channels: {bad} outside their estimate or tolerance, {err} Err; largest |error|/(estimates + rounding) {worst:.3e}:\n  {worst_line}", pts.len(), tols.len());
 }
