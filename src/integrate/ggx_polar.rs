@@ -38,8 +38,19 @@
 //! whose integrand is analytic in ϑ except at s = −s_min, −s_max, −s₀, at a distance
 //! proportional to s_min rather than s_min² from the interval. The trapezoid rule on this
 //! even periodic integrand converges geometrically (Trefethen & Weideman 2014, "The
-//! exponentially convergent trapezoidal rule", thm. 3.2). It is applied with 4, 8, 16, 32,
-//! 64 intervals until two successive results agree to the inner tolerance; where they do not
+//! exponentially convergent trapezoidal rule", thm. 3.2), at a rate set by the distance of
+//! the nearest singularity from the real axis. All of them lie on one line: with u = π − ϑ,
+//! s = −σ (σ ∈ {s₀, s_min, s_max}) at u = ±i b_σ, `tanh(b_σ/2) = √(y/(2 + y))`,
+//! `y = (s_min + σ)/h`; near grazing b_{s₀} is small. There the rule is taken in w,
+//! `tan(u/2) = ε tan(w/2)` (a Möbius map of the period onto itself: nodes gather at s_min),
+//! with `ε = √(tanh(b_{s₀}/2) tanh(b_{s_max}/2))`, which puts the nearest and the farthest
+//! singularity at the same distance `2 atanh(√(tanh(b_{s₀}/2)/tanh(b_{s_max}/2)))` from the
+//! real w axis, wider than b_{s₀} (Trefethen & Weideman 2014, §3, on conformal maps that widen
+//! the strip). The rule is applied with 1, 2, 4, …, 64
+//! intervals (nested) and T_N accepted from N = 4 on when |T_N − T_{N/2}| (the error of the
+//! coarser rule, an over-estimate of T_N's) is within the inner tolerance — at N = 4 also
+//! `|T_2 − T_1|²/max|R|`, which guards against T_4 and T_2 agreeing by chance before the
+//! geometric regime (the guard of QUADPACK's estimates, Piessens et al. 1983, §2.2.1); where they do not
 //! (both directions within a few degrees of grazing), the φ integral of D Fc is done by the
 //! adaptive Gauss–Kronrod rule in ψ, `tan(φ/2) = √((S+Q)/(S−Q)) tan(ψ/2)`, which makes
 //! `dφ/y = dψ/r` and the integrand `(α²/π) z² Fc (S − Q cos ψ)/r³` bounded.
@@ -47,11 +58,24 @@
 //! **The outer integral** over θl is split at θv (where the lobe peaks: near θl = θv,
 //! `S − Q ≈ μv² ((θl − θv)² + 4α²)`) and warped there, `θl = θv ± w sinh t`, and, where the
 //! horizon is far from θv, again near the horizon, where the masking turns over at
-//! μl ≈ μv α/a_v (see `run`); each piece is integrated by the adaptive Gauss–Kronrod rule
-//! ([`integrate`]), both channels at once.
+//! μl ≈ μv α/a_v (see `run`). In t the integrand is analytic in a strip |Im t| < ~π/2 (the
+//! lobe's poles sit at sinh t = ±i·(lobe width)/w), so each panel is integrated whole by
+//! nested Clenshaw–Curtis rules of 9, 17, 33, 65 nodes in t (Trefethen 2008, "Is Gauss
+//! quadrature better than Clenshaw–Curtis?"), both channels at once, bisected only where
+//! 65 nodes do not reach the tolerance; a panel at most 1.5 long in t (wide lobes), where one
+//! G7/K15 panel usually passes with 15 nodes, by the adaptive Gauss–Kronrod rule
+//! ([`integrate`], estimate |K15 − G7|) instead.
 //!
-//! **Error.** The outer rule's estimate (|K15 − G7|, an over-estimate) plus a bound on the
-//! inner rules': an inner error δ(θl) on `(1/π)∫R dφ` moves the Schlick channel by
+//! **Error.** The outer rule's estimate plus a bound on the inner rules'. Clenshaw–Curtis
+//! with n + 1 nodes is the exact integral of the interpolant p_n at the Chebyshev points, so
+//! on [a, b] its error is `|∫(f − p_n)| ≤ (b − a) max|f − p_n| ≤ (b − a)·2 Σ_{m>n} |a_m|`
+//! (a_m the Chebyshev coefficients of f; Trefethen, *Approximation Theory and Approximation
+//! Practice*, 2013, thm. 4.2); the sum is estimated by the largest of the interpolant's top
+//! four computed coefficients (the tail test of Chebfun's chopping, ATAP ch. 3), which over-
+//! estimates the quadrature error by the factor ~n²/8 by which ∫T_m (≈ 2/m²) is smaller than
+//! max|T_m| = 1 — the safety margin. (|Q_n − Q_{n/2}| would be the error of the coarser rule,
+//! about as large as the tail at level n/2: it would need twice the nodes.) The inner rules':
+//! an inner error δ(θl) on `(1/π)∫R dφ` moves the Schlick channel by
 //! `∫ k α² δ dθl` with the line's weight `k = sin θl G2/(2μv)`, at most `(π/2) max(k α² δ)`;
 //! each line is asked for `δ ≤ tol/(2π α² k)` (so lines near the horizon, where G2 → 0, are
 //! cheap) and the bound from the δ actually reached is added to the estimate. A texel whose
@@ -62,11 +86,17 @@
 
 use super::adaptive::{integrate, Estimate, Tolerance};
 use super::dfg_kernel::Smith;
+use super::tensor::{rules, MAX_LEVEL};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by adaptive Gauss-Kronrod warped at theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail, bisected where needed; adaptive Gauss-Kronrod on panels at most 1.5 long) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+
+/// The Möbius map of the azimuthal rule is used where the nearest singularity has
+/// `tanh(b₀/2)` below this (b₀ ≲ 0.4: lines near grazing); elsewhere its gain did not pay
+/// for its arithmetic (measured with examples/polar_cost.rs).
+const MOBIUS_BELOW: f64 = 0.2;
 
 /// Finest trapezoid level: 2^6 intervals on [0, π].
 const MAX_LOG2: usize = 6;
@@ -195,34 +225,80 @@ impl Texel {
         let s_max = 2.0 * (hcv * hc + hsv * hs);
         let h = 0.5 * (s_max - s_min).max(0.0);
         let opc = one_plus_cos();
+        // Möbius map of the period, u = π − ϑ, tan(u/2) = ε tan(w/2) (trapezoid nodes in w):
+        // every singularity sits on the imaginary u axis, at u = i b_σ with
+        // tanh(b_σ/2) = √(y_σ/(2 + y_σ)), y_σ = (s_min + σ)/h, σ ∈ {s₀, s_min, s_max}; the map
+        // sends those with tanh(b/2) < ε to distance 2 atanh(tanh(b/2)/ε) from the real w axis
+        // and the others to 2 atanh(ε/tanh(b/2)), so ε = √(tanh(b₀/2) tanh(b_max/2)) gives the
+        // nearest (s₀) and the farthest (s_max) the same distance — the widest strip, hence the
+        // fastest geometric rate (Trefethen & Weideman 2014, §3) — and ε = 1 is the identity.
+        // tanh(b₀/2) < MOBIUS_BELOW ⟺ y₀/(2 + y₀) < MOBIUS_BELOW², tested without a division
+        let b2 = MOBIUS_BELOW * MOBIUS_BELOW;
+        let eps = if h > 0.0 && (1.0 - b2) * (s_min + s0) < 2.0 * b2 * h {
+            let y0 = (s_min + s0) / h;
+            let y3 = (s_min + s_max) / h;
+            ((y0 / (2.0 + y0)) * (y3 / (2.0 + y3)))
+                .sqrt()
+                .sqrt()
+                .clamp(1e-6, 1.0)
+        } else {
+            1.0
+        };
+        let e2 = eps * eps;
+        let mobius = eps < 1.0;
         let r_at = |k: usize| {
-            let sq = s_min + h * opc[k];
+            let (sq, jac) = if mobius {
+                // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
+                // 1 − cos u = 2ε² sin²(w/2)/den, du/dw = ε/den, den = cos²(w/2) + ε² sin²(w/2)
+                let (cw, sw) = (0.5 * opc[k], 0.5 * opc[NTRAP - k]);
+                let den = 1.0 / (cw + e2 * sw);
+                (s_min + h * 2.0 * e2 * sw * den, eps * den)
+            } else {
+                // u = w: 1 − cos u = 1 + cos ϑ at ϑ = kπ/64 (the nodes in reverse order)
+                (s_min + h * opc[k], 1.0)
+            };
             let mut p = p2[7];
             for c in (0..7).rev() {
                 p = p * sq + p2[c];
             }
             let d = sq + s0;
-            p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt())
+            jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt())
         };
-        // trapezoid sums on [0, π], nested by doubling
-        let mut evals = 0u64;
-        let mut stride = NTRAP / 4;
-        let mut sum = 0.5 * (r_at(0) + r_at(NTRAP));
-        for k in (stride..NTRAP).step_by(stride) {
-            sum += r_at(k);
-        }
-        evals += 5;
-        let mut prev = sum * stride as f64 / NTRAP as f64;
+        // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
+        // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
+        // coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|
+        let mut stride = NTRAP;
+        let (r_0, r_n) = (r_at(0), r_at(NTRAP));
+        let mut sum = 0.5 * (r_0 + r_n);
+        // max|R| over the 5 nodes of T_4 (for the guard)
+        let mut fmax = r_0.abs().max(r_n.abs());
+        let mut evals = 2u64;
+        // T_{N/4}, T_{N/2}
+        let mut t_prev = [0.0f64, sum];
+        let mut level = 0;
         while stride > 1 {
             let half = stride / 2;
-            for k in (half..NTRAP).step_by(stride) {
-                sum += r_at(k);
+            if level < 2 {
+                for k in (half..NTRAP).step_by(stride) {
+                    let v = r_at(k);
+                    fmax = fmax.max(v.abs());
+                    sum += v;
+                }
+            } else {
+                for k in (half..NTRAP).step_by(stride) {
+                    sum += r_at(k);
+                }
             }
             evals += (NTRAP / stride) as u64;
             stride = half;
+            level += 1;
             let cur = sum * stride as f64 / NTRAP as f64;
-            let d = (cur - prev).abs();
-            if d <= inner_tol && cur.is_finite() {
+            let mut d = (cur - t_prev[1]).abs();
+            if level == 2 {
+                let d2 = (t_prev[1] - t_prev[0]).abs();
+                d = d.max(d2 * d2 / fmax.max(inner_tol));
+            }
+            if level >= 2 && d <= inner_tol && cur.is_finite() {
                 let i5 = a2 * (g_m * j2 + dg_m * j1 + cur);
                 return Line {
                     k,
@@ -232,7 +308,7 @@ impl Texel {
                     evals,
                 };
             }
-            prev = cur;
+            t_prev = [t_prev[1], cur];
         }
         let (i5, err, n) = i5_psi(dm, q, r, s_min * s_min, a2, inner_tol);
         Line {
@@ -273,6 +349,130 @@ fn i5_psi(dm: f64, q: f64, r: f64, p_m_q: f64, a2: f64, inner_tol: f64) -> (f64,
         tol,
     );
     (e.value[0], e.error[0] / a2, e.evals)
+}
+
+/// Number of top Chebyshev coefficients whose largest bounds the outer rule's error.
+const TAIL: usize = 4;
+
+/// `(2/n)·w_j·cos(π j m/n)` (w_j = ½ at the ends, else 1) for the top [`TAIL`] degrees `m = n − TAIL + 1 ..= n` of every level
+/// `n = 2^k` (k = 0..=MAX_LEVEL, rows of `TAIL·(n + 1)`; empty below n = TAIL), taken from the
+/// Clenshaw–Curtis nodes `cos(iπ/2^MAX_LEVEL)` so that they are exact to the same bits.
+fn tail_cos() -> &'static Vec<Vec<f64>> {
+    static T: OnceLock<Vec<Vec<f64>>> = OnceLock::new();
+    T.get_or_init(|| {
+        let r = rules();
+        (0..=MAX_LEVEL)
+            .map(|k| {
+                let n = 1usize << k;
+                let stride = 1usize << (MAX_LEVEL - k);
+                let mut v = Vec::new();
+                if n >= TAIL {
+                    for m in (n + 1 - TAIL)..=n {
+                        for j in 0..=n {
+                            let p = (j * m) % (2 * n);
+                            let i = if p <= n { p } else { 2 * n - p };
+                            let w = if j == 0 || j == n { 1.0 } else { 2.0 };
+                            v.push(w / n as f64 * r.x[i * stride]);
+                        }
+                    }
+                }
+                v
+            })
+            .collect()
+    })
+}
+
+/// First and last Clenshaw–Curtis level of the outer rule: 2^3 + 1 = 9 to 2^6 + 1 = 65 nodes.
+const OUTER_MIN_LEVEL: usize = 3;
+const OUTER_MAX_LEVEL: usize = 6;
+/// Most θl lines one panel may spend (bisections included): a pathological integrand costs
+/// bounded time and reports the error it reached.
+const OUTER_MAX_LINES: u64 = 1 << 12;
+/// A panel at most this long in t (wide lobes, short panels) is integrated by the adaptive
+/// G7/K15 rule instead: one K15 panel (15 lines) usually passes there, where the
+/// Clenshaw–Curtis estimate needs 33 nodes (at 3.0 the K15 panels were bisected more often
+/// than not: more lines; measured with examples/polar_cost.rs).
+const SHORT_PANEL: f64 = 1.5;
+
+/// ∫ₐᵇ f (both channels) by nested Clenshaw–Curtis levels [`OUTER_MIN_LEVEL`]`..=`
+/// [`OUTER_MAX_LEVEL`], stopping at the first whose estimate (the module doc's "Error") is at
+/// most `tol` in both channels, else bisected (to `depth` levels, within `lines` of
+/// [`OUTER_MAX_LINES`]). Adds value and error to `out`, the lines used to `lines`.
+fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
+    f: &mut F,
+    (a, b): (f64, f64),
+    tol: f64,
+    depth: u32,
+    out: &mut Estimate<2>,
+    lines: &mut u64,
+) {
+    // values at the nodes of the finest outer level, local index l ↔ node cos(lπ/2^6)
+    // (the rules' global index l·G)
+    const NV: usize = (1 << OUTER_MAX_LEVEL) + 1;
+    const G: usize = 1 << (MAX_LEVEL - OUTER_MAX_LEVEL);
+    let r = rules();
+    let tc = tail_cos();
+    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    let mut vals = [[0.0f64; 2]; NV];
+    let mut last = Estimate::<2>::zero();
+    for k in 1..=OUTER_MAX_LEVEL {
+        let ls = 1usize << (OUTER_MAX_LEVEL - k);
+        // the new nodes of level k: all three at k = 1, else the odd multiples of ls
+        let (mut l, step) = if k == 1 { (0, ls) } else { (ls, 2 * ls) };
+        while l < NV {
+            vals[l] = f(mid + half * r.x[l * G]);
+            *lines += 1;
+            l += step;
+        }
+        if k < OUTER_MIN_LEVEL {
+            continue;
+        }
+        let n = 1usize << k;
+        let mut q = [0.0f64; 2];
+        for (j, &w) in r.w[k].iter().enumerate() {
+            for c in 0..2 {
+                q[c] += w * vals[j * ls][c];
+            }
+        }
+        // the interpolant's top Chebyshev coefficients c_m = (2/n) Σ'' v_j cos(π j m/n);
+        // |∫(f − p_n)| ≤ (b − a)·max|f − p_n| ≤ (b − a)·2Σ_{m>n}|a_m|, the sum taken as the
+        // largest of the top TAIL computed coefficients (below the last level, the first row
+        // over tol settles that the level is not accepted)
+        let mut err = [0.0f64; 2];
+        for row in tc[k].chunks_exact(n + 1) {
+            let mut cm = [0.0f64; 2];
+            for (j, &t) in row.iter().enumerate() {
+                let v = vals[j * ls];
+                cm[0] += t * v[0];
+                cm[1] += t * v[1];
+            }
+            for c in 0..2 {
+                err[c] = err[c].max(4.0 * half * cm[c].abs());
+            }
+            if !(err[0] <= tol && err[1] <= tol) && k < OUTER_MAX_LEVEL {
+                break;
+            }
+        }
+        last = Estimate {
+            value: [q[0] * half, q[1] * half],
+            error: err,
+            evals: 0,
+        };
+        if err.iter().all(|&e| e <= tol) && last.value.iter().all(|v| v.is_finite()) {
+            break;
+        }
+    }
+    let done = last.error.iter().all(|&e| e <= tol);
+    if done || depth == 0 || *lines >= OUTER_MAX_LINES || !last.error.iter().all(|e| e.is_finite())
+    {
+        for c in 0..2 {
+            out.value[c] += last.value[c];
+            out.error[c] += last.error[c];
+        }
+        return;
+    }
+    cc_tail(f, (a, mid), 0.5 * tol, depth - 1, out, lines);
+    cc_tail(f, (mid, b), 0.5 * tol, depth - 1, out, lines);
 }
 
 /// The GGX split sum `[∫(1 − Fc) f cos, ∫ Fc f cos]` (F = 1) at view cosine `mu` and
@@ -321,52 +521,42 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
     let mut inner_err = 0.0f64;
     let mut evals = 0u64;
     let mut total = Estimate::<2>::zero();
-    let outer = Tolerance {
-        abs: 0.125 * tol,
-        initial_panels: 1,
-        max_depth: 24,
-        noise_floor: 0.0,
-        max_evals: 1 << 12,
-    };
+    // each panel's outer rule within tol/8 per channel (three panels, two channels summed
+    // into channel 0, and the inner rules' tol/4: at most tol in all)
+    let outer_tol = 0.125 * tol;
     for (origin, sign, scale, len) in panels {
         if len <= 0.0 {
             continue;
         }
         let t_max = (len / scale).asinh();
-        // fixed cuts where the lobe's sech²-like profile in t has decayed by ~e², e⁴, e⁸:
-        // the adaptive rule then starts on pieces it can usually accept at once
+        let mut f = |x: f64| {
+            let sh = x.sinh();
+            let theta_l = (origin + sign * scale * sh).clamp(0.0, FRAC_PI_2);
+            let jac = scale * (1.0 + sh * sh).sqrt();
+            // an inner error δ on the line of weight k moves the result by k·α²·δ
+            // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
+            let l = t.line(theta_l, tol / (2.0 * PI * a2), with_fc);
+            inner_err = inner_err.max(l.k * a2 * l.err);
+            evals += l.evals;
+            [l.k * jac * l.i0, l.k * jac * l.i5]
+        };
         let mut e = Estimate::<2>::zero();
-        let mut lo = 0.0;
-        for hi in [1.5, 3.0, 6.0, f64::INFINITY] {
-            let hi = hi.min(t_max);
-            if hi <= lo {
-                break;
-            }
-            let piece = Tolerance {
-                abs: outer.abs * (hi - lo) / t_max,
-                ..outer
-            };
-            let p = integrate(
-                |x: f64| {
-                    let sh = x.sinh();
-                    let theta_l = (origin + sign * scale * sh).clamp(0.0, FRAC_PI_2);
-                    let jac = scale * (1.0 + sh * sh).sqrt();
-                    // an inner error δ on the line of weight k moves the result by k·α²·δ
-                    // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
-                    let l = t.line(theta_l, tol / (2.0 * PI * a2), with_fc);
-                    inner_err = inner_err.max(l.k * a2 * l.err);
-                    evals += l.evals;
-                    [l.k * jac * l.i0, l.k * jac * l.i5]
+        if t_max <= SHORT_PANEL {
+            e = integrate(
+                &mut f,
+                0.0,
+                t_max,
+                Tolerance {
+                    abs: outer_tol,
+                    initial_panels: 1,
+                    max_depth: 24,
+                    noise_floor: 0.0,
+                    max_evals: OUTER_MAX_LINES,
                 },
-                lo,
-                hi,
-                piece,
             );
-            for c in 0..2 {
-                e.value[c] += p.value[c];
-                e.error[c] += p.error[c];
-            }
-            lo = hi;
+        } else {
+            let mut lines = 0u64;
+            cc_tail(&mut f, (0.0, t_max), outer_tol, 12, &mut e, &mut lines);
         }
         for c in 0..2 {
             total.value[c] += e.value[c];
