@@ -92,18 +92,55 @@ fn fit<F: FnMut(f64) -> f64>(f: &mut F, a: f64, b: f64) -> [f64; DEG + 1] {
 /// the Lobatto points `t_j = cos(πj/n)`, `n = v.len() − 1 ≥ 1` (the discrete cosine transform
 /// of type I; ATAP ch. 3).
 pub fn lobatto_coefficients(v: &[f64]) -> Vec<f64> {
-    let n = v.len() - 1;
-    (0..=n)
-        .map(|k| {
-            let mut s = 0.0;
-            for (j, vj) in v.iter().enumerate() {
-                let w = if j == 0 || j == n { 0.5 } else { 1.0 };
-                s += w * vj * (std::f64::consts::PI * (j * k) as f64 / n as f64).cos();
-            }
-            let scale = if k == 0 || k == n { 1.0 } else { 2.0 };
-            s * scale / n as f64
-        })
-        .collect()
+    Lobatto::new(v.len() - 1).coefficients(v)
+}
+
+/// The transform of [`lobatto_coefficients`] for one degree n, with its cosines
+/// `cos(πm/n)`, m = 0..2n, computed once (`cos(πjk/n) = cos(π·(jk mod 2n)/n)`): a line
+/// interpolating many channels at once transforms each channel without a cosine call.
+pub struct Lobatto {
+    n: usize,
+    cos: Vec<f64>,
+}
+
+impl Lobatto {
+    pub fn new(n: usize) -> Lobatto {
+        let cos = (0..2 * n)
+            .map(|m| (std::f64::consts::PI * m as f64 / n as f64).cos())
+            .collect();
+        Lobatto { n, cos }
+    }
+
+    /// The coefficients of the values `v` (`n + 1` of them).
+    pub fn coefficients(&self, v: &[f64]) -> Vec<f64> {
+        let n = self.n;
+        debug_assert_eq!(v.len(), n + 1);
+        (0..=n)
+            .map(|k| {
+                let mut s = 0.5 * (v[0] + v[n] * self.cos[(n * k) % (2 * n)]);
+                for (j, vj) in v.iter().enumerate().take(n).skip(1) {
+                    s += vj * self.cos[(j * k) % (2 * n)];
+                }
+                let scale = if k == 0 || k == n { 1.0 } else { 2.0 };
+                s * scale / n as f64
+            })
+            .collect()
+    }
+}
+
+/// `T_0(t) … T_n(t)` by the three-term recurrence (bounded by 1 on [−1, 1], where it is
+/// stable), for evaluating many expansions at one point as dot products.
+pub fn chebyshev_polynomials(t: f64, n: usize) -> Vec<f64> {
+    let mut p = Vec::with_capacity(n + 1);
+    p.push(1.0);
+    if n >= 1 {
+        p.push(t);
+    }
+    for k in 2..=n {
+        let next = 2.0 * t * p[k - 1] - p[k - 2];
+        p.push(next);
+    }
+    p
 }
 
 /// `Σ_k c_k T_k(t)` by Clenshaw's recurrence.
