@@ -128,19 +128,16 @@ impl Lobatto {
     }
 }
 
-/// `T_0(t) … T_n(t)` by the three-term recurrence (bounded by 1 on [−1, 1], where it is
-/// stable), for evaluating many expansions at one point as dot products.
-pub fn chebyshev_polynomials(t: f64, n: usize) -> Vec<f64> {
-    let mut p = Vec::with_capacity(n + 1);
-    p.push(1.0);
-    if n >= 1 {
-        p.push(t);
+/// `T_0(t) … T_n(t)` into `p` (n + 1 = `p.len()` ≥ 1) by the three-term recurrence (bounded
+/// by 1 on [−1, 1], where it is stable), for evaluating many expansions at one point.
+pub fn chebyshev_polynomials(t: f64, p: &mut [f64]) {
+    p[0] = 1.0;
+    if p.len() > 1 {
+        p[1] = t;
     }
-    for k in 2..=n {
-        let next = 2.0 * t * p[k - 1] - p[k - 2];
-        p.push(next);
+    for k in 2..p.len() {
+        p[k] = 2.0 * t * p[k - 1] - p[k - 2];
     }
-    p
 }
 
 /// `Σ_k c_k T_k(t)` by Clenshaw's recurrence.
