@@ -534,7 +534,8 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
             .map(|i| ctx.cloth_column(rl, ax.coord(i), tol, fraction, stop))
             .collect()
     };
-    let strip = || {
+    // the strip's columns, and the wide lobes' columns where they have no grid
+    let column_sets = || {
         rayon::join(
             || columns(&p.strip, k0, NODE_TOL_FRACTION),
             || columns(&p.cloth_columns, nx, COLUMN_NODE_TOL_FRACTION),
@@ -573,7 +574,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
             .collect()
     };
     let (grids, ((strip, cloth_columns), (pair_rows, cloth_rows))) = rayon::join(grids, || {
-        rayon::join(strip, || rayon::join(pair_rows, cloth_rows))
+        rayon::join(column_sets, || rayon::join(pair_rows, cloth_rows))
     });
     let mut grids = grids.into_iter();
     let narrow_grid = p
