@@ -282,13 +282,17 @@ fn line_sample(line: LineValues) -> Sample {
     }
 }
 
-/// A zero sample of `nc` channels (what every sample becomes once `stop()` says so).
-fn blank(nc: usize) -> Sample {
-    Sample {
-        value: vec![0.0; nc],
-        error: vec![0.0; nc],
-        evals: 0,
+/// `f()`, or, once `stop()` says so, a zero sample of `nc` channels (the caller then
+/// discards the table).
+fn unless_stopped(stop: Stop, nc: usize, f: impl FnOnce() -> Sample) -> Sample {
+    if stop() {
+        return Sample {
+            value: vec![0.0; nc],
+            error: vec![0.0; nc],
+            evals: 0,
+        };
     }
+    f()
 }
 
 type Stop<'a> = &'a (dyn Fn() -> bool + Sync);
@@ -306,17 +310,11 @@ impl Ctx {
             tol,
             tol * COLUMN_NODE_TOL_FRACTION,
             |y, t| {
-                if stop() {
-                    return blank(2);
-                }
-                as_sample(self.pair_at(rl.var.alpha(y), &view, t))
+                unless_stopped(stop, 2, || {
+                    as_sample(self.pair_at(rl.var.alpha(y), &view, t))
+                })
             },
-            |k, t| {
-                if stop() {
-                    return blank(2);
-                }
-                as_sample(self.pair(rl.row[k], &view, t))
-            },
+            |k, t| unless_stopped(stop, 2, || as_sample(self.pair(rl.row[k], &view, t))),
         )
     }
 
@@ -333,10 +331,7 @@ impl Ctx {
     ) -> LineValues {
         let view = View::new(mu);
         let at = |alpha: f64, t: f64| {
-            if stop() {
-                return blank(1);
-            }
-            cloth_sample(cloth_texel(&view, alpha, t))
+            unless_stopped(stop, 1, || cloth_sample(cloth_texel(&view, alpha, t)))
         };
         interp1d::line_with_node_tol(
             &rl.ys,
@@ -351,10 +346,10 @@ impl Ctx {
 }
 
 /// A grid: the line across the table in x = √μ from texel column `i0` on (`xs` holds every
-/// column's x; cut at `breaks`) whose samples are the columns `column(μ, tol)` (`nc`
-/// channels per row of the column), the columns of one batch (one degree's new nodes, one
-/// interval's sample-test points or direct texel columns) computed in parallel. Channel
-/// `k·nc + c` of its texel i (table column `i0 + i`) is channel c of the column's k-th row.
+/// column's x; cut at `breaks`) whose samples are the columns `column(μ, tol)`, each with
+/// `channels` channels (its rows' channels, row-major), the columns of one batch (one
+/// degree's new nodes, one interval's sample-test points or direct texel columns) computed
+/// in parallel. Channel c of its texel i is channel c of the column at table column `i0 + i`.
 fn grid(
     ax: &Axis,
     xs: &[f64],
@@ -394,17 +389,11 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
         2,
         ctx.tol,
         ctx.tol * interp1d::NODE_TOL_FRACTION,
-        |x, t| {
-            if stop() {
-                return blank(2);
-            }
-            as_sample(ctx.pair(j, &View::new(x * x), t))
-        },
+        |x, t| unless_stopped(stop, 2, || as_sample(ctx.pair(j, &View::new(x * x), t))),
         |i, t| {
-            if stop() {
-                return blank(2);
-            }
-            as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
+            unless_stopped(stop, 2, || {
+                as_sample(ctx.pair(j, &View::new(ax.coord(i)), t))
+            })
         },
     )
 }
@@ -416,10 +405,9 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
 fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: Stop) -> LineValues {
     let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
     let at = |mu: f64, t: f64| {
-        if stop() {
-            return blank(1);
-        }
-        cloth_sample(cloth_texel(&View::new(mu), alpha, t))
+        unless_stopped(stop, 1, || {
+            cloth_sample(cloth_texel(&View::new(mu), alpha, t))
+        })
     };
     let direct_below = strip_end.is_none();
     let k0 = strip_end.unwrap_or_else(|| xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK));
