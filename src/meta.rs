@@ -282,7 +282,8 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
         // (src/table/albedo.rs `charlie_kernels`)
         format!(
-            "Charlie/Ashikhmin cloth kernels: alpha < 1/16 first {}; 1/16 <= alpha <= 1 first {}; where those fail: {}. Generic path: {method}",
+            "Charlie/Ashikhmin cloth kernels: first {}; where that declines (views within 1e-3 of the normal) or fails: alpha < 1/16 {}; 1/16 <= alpha <= 1 {}; where those fail: {}. Generic path: {method}",
+            crate::integrate::sheen_azimuth::METHOD,
             crate::integrate::sheen_l::METHOD,
             crate::integrate::sheen_wide::METHOD,
             crate::integrate::dfg_kernel::METHOD

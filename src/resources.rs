@@ -134,8 +134,10 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     let polar = crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking);
     let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
     // Charlie + Ashikhmin albedo through the cloth kernels (src/table/albedo.rs
-    // `charlie_kernels`, column by column): 1,359 per texel (`sheen-charlie`, 1,391,777
-    // evaluations over 1,024 texels, 2026-11-30; 1,756 with the half-vector kernel alone)
+    // `charlie_kernels`, column by column): 78 per texel with the θh kernel
+    // (src/integrate/sheen_azimuth.rs; `sheen-charlie`, 80,305 evaluations over 1,024
+    // texels, 2026-11-30), most of them an `exp` on node data the column shares; 1,359 with
+    // the light-direction kernels, 1,756 with the half-vector kernel alone
     let cloth_albedo = crate::table::albedo::uses_kernel(&spec.model)
         && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
     // V-groove albedo: 1,923 per texel with the closed-form Beckmann kernel and the ordered
@@ -146,7 +148,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     } else if polar_albedo {
         100.0
     } else if cloth_albedo {
-        1_400.0
+        100.0
     } else {
         1_500.0
     };
@@ -168,23 +170,28 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // With grids (src/table/dfg_lines.rs, tables of ≥ 128 columns; 2026-11-30): a fixed
         // cost plus a little per texel, the pair from karis-envbrdf (5.0 M at 128², 13.5 M
         // at 512²: 4.4 M + 35 per texel), the cloth channel from filament-dfg less that
-        // (7.1 M and 13.4 M: 6.7 M + 26 per texel); the fixed cost is spread over the rows
+        // (7.1 M and 13.4 M: 6.7 M + 26 per texel); the fixed cost is spread over the rows.
+        // Since (2026-11-30, the θh cloth kernel and the polar kernel's nested outer rule):
+        // the pair 3.08 M at 128², 6.90 M at 512² (2.8 M + 16 per texel), the cloth channel
+        // 0.87 M and 1.31 M (0.85 M + 2 per texel)
         K::Dfg => {
             let interpolated = crate::table::dfg_lines::interpolated(spec);
             let nx = spec.axes[0].size as f64;
             if interpolated && nx >= crate::table::dfg_lines::GRID_MIN_COLUMNS as f64 {
                 let (cloth, cloth_fixed) = if spec.cloth {
-                    (26.0, 6.7e6)
+                    (2.0, 0.85e6)
                 } else {
                     (0.0, 0.0)
                 };
                 let rows = spec.axes.get(1).map_or(1.0, |a| a.size as f64);
-                return (35.0 + cloth, (4.4e6 + cloth_fixed) / rows);
+                return (16.0 + cloth, (2.8e6 + cloth_fixed) / rows);
             }
+            // (the θh cloth kernel: 114 per texel at 64², where the narrow lobes go by rows
+            // and the wide ones by columns; ~80 texel by texel, as `sheen-charlie`)
             let cloth = match (spec.cloth, interpolated) {
                 (false, _) => 0.0,
-                (true, true) => 450.0,
-                (true, false) => 1_300.0,
+                (true, true) => 120.0,
+                (true, false) => 100.0,
             };
             if interpolated {
                 let row = (40_000.0 + 85.0 * nx).min(dfg * nx);

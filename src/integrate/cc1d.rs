@@ -56,6 +56,21 @@ pub fn nested_cc_from<const N: usize, F: FnMut(f64) -> [f64; N]>(
     min_level: usize,
     max_level: usize,
 ) -> Result<Estimate<N>, u64> {
+    nested_cc_indexed(&mut |_, x| f(x), a, b, tol, min_level, max_level)
+}
+
+/// [`nested_cc_from`] whose integrand is also told each node's index `i` in the finest
+/// level (node `x = (a + b)/2 + (b − a)/2·cos(iπ/2^MAX_LEVEL)`, `i < 2^MAX_LEVEL + 1`), so
+/// that a caller integrating several functions over the same interval can keep what they
+/// share per node.
+pub fn nested_cc_indexed<const N: usize, F: FnMut(usize, f64) -> [f64; N]>(
+    f: &mut F,
+    a: f64,
+    b: f64,
+    tol: f64,
+    min_level: usize,
+    max_level: usize,
+) -> Result<Estimate<N>, u64> {
     let r = rules();
     let max_level = max_level.clamp(FIRST_LEVEL, MAX_LEVEL);
     let min_level = min_level.clamp(FIRST_LEVEL, max_level);
@@ -68,7 +83,7 @@ pub fn nested_cc_from<const N: usize, F: FnMut(f64) -> [f64; N]>(
         let mut i = 0;
         while i < NMAX {
             if k == FIRST_LEVEL || (i / stride) % 2 == 1 {
-                vals[i] = f(mid + half * r.x[i]);
+                vals[i] = f(i, mid + half * r.x[i]);
                 evals += 1;
             }
             i += stride;

@@ -57,10 +57,11 @@ const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
 pub const METHOD: &str = "specialised kernels for the GGX split sum (Smith height-correlated or separable masking) and the Charlie/Ashikhmin cloth channel (src/integrate/dfg_kernel.rs): the nested Clenshaw-Curtis tensor rule of the generic fast path (same coordinates, warps, levels and error estimate) with the integrand in closed form (GGX: D (n.h) dw_h = sinh u/(pi cosh^3 u) du dphi, tan theta_h = alpha sinh u) and the per-view setup shared by a table column; a texel whose estimate does not reach the tolerance goes to the generic path";
 
 /// One view's data for the kernels that share it along a table column — the φ-node setup
-/// ([`Column`]), the half-vector cloth kernel's node data ([`SheenCache`]) and the wide
-/// cloth lobes' ([`WideCache`](super::sheen_wide::WideCache)) — built on first use and then
-/// shared by every texel at that view. The kernels tried first (the polar split sum,
-/// sheen_l for narrow cloth lobes, sheen_wide for wide ones) need no column and no
+/// ([`Column`]), the half-vector cloth kernel's node data ([`SheenCache`]), the wide
+/// cloth lobes' ([`WideCache`](super::sheen_wide::WideCache)) and the θh cloth kernel's
+/// ([`AzimuthCache`](super::sheen_azimuth::AzimuthCache)) — built on first use and then
+/// shared by every texel at that view. The kernels tried first (the polar split sum, the
+/// θh cloth kernel) need no column and no
 /// half-vector cache, and building them would cost more than some of those texels (that
 /// cache alone zeroes 266 KB: at 512², one per column was ~1% of the bake in page faults).
 /// The results are the same bits with or without them.
@@ -70,6 +71,7 @@ pub struct View {
     col: OnceCell<Column>,
     cache: OnceCell<RefCell<SheenCache>>,
     wide: RefCell<super::sheen_wide::WideCache>,
+    azimuth: RefCell<super::sheen_azimuth::AzimuthCache>,
 }
 
 impl View {
@@ -80,6 +82,7 @@ impl View {
             col: OnceCell::new(),
             cache: OnceCell::new(),
             wide: RefCell::default(),
+            azimuth: RefCell::default(),
         }
     }
 
@@ -102,6 +105,11 @@ impl View {
     /// The wide cloth lobes' node data for this view (filled as texels ask for it).
     pub fn wide(&self) -> &RefCell<super::sheen_wide::WideCache> {
         &self.wide
+    }
+
+    /// The θh cloth kernel's node data for this view (filled as texels ask for it).
+    pub fn azimuth(&self) -> &RefCell<super::sheen_azimuth::AzimuthCache> {
+        &self.azimuth
     }
 }
 

@@ -12,6 +12,7 @@ pub mod ggx_polar;
 pub mod hemisphere;
 pub mod interp1d;
 pub mod monte_carlo;
+pub mod sheen_azimuth;
 pub mod sheen_l;
 pub mod sheen_wide;
 pub mod tensor;

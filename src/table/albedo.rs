@@ -8,7 +8,7 @@ use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::integrate::{integrate, Tolerance};
-use crate::integrate::{sheen_l, sheen_wide};
+use crate::integrate::{sheen_azimuth, sheen_l, sheen_wide};
 use crate::model::{Brdf, Masking};
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -160,19 +160,30 @@ fn directional_albedo_in(
 }
 
 /// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by
-/// the cloth kernels, as the `filament-dfg` cloth channel computes it: in light-direction
-/// coordinates first — [`sheen_l`] for α < [`sheen_l::MAX_ALPHA`], [`sheen_wide`] for
-/// α up to 1 (with the view's shared node data) —, then, where that does not reach `tol`,
-/// the half-vector kernel
+/// the cloth kernels, as the `filament-dfg` cloth channel computes it: first
+/// [`sheen_azimuth`] (a 1D integral over θh with the azimuthal integral in closed form; it
+/// shares its node data for wide lobes along the view's column, and declines views within
+/// 1e-3 of the normal), then the light-direction kernels — [`sheen_l`] for α <
+/// [`sheen_l::MAX_ALPHA`], [`sheen_wide`] for α up to 1 (with the view's shared node data) —,
+/// then the half-vector kernel
 /// ([`charlie_sheen_shared`](crate::integrate::dfg_kernel::charlie_sheen_shared));
-/// `Err(evaluations spent)` if neither does (the caller falls back to the generic path).
-/// The same bits whether `view` is shared by a column or the texel's own.
+/// `Err(evaluations spent)` if none reaches `tol` (the caller falls back to the generic
+/// path). The same bits whether `view` is shared by a column or the texel's own.
 pub(crate) fn charlie_kernels(
     view: &View,
     alpha: f64,
     tol: f64,
 ) -> Result<crate::integrate::Estimate<1>, u64> {
     let mu = view.mu();
+    let spent0 = match sheen_azimuth::charlie_sheen_azimuth_shared(
+        mu,
+        alpha,
+        tol,
+        &mut view.azimuth().borrow_mut(),
+    ) {
+        Ok(e) => return Ok(e),
+        Err(n) => n,
+    };
     let first = if alpha < sheen_l::MAX_ALPHA {
         Some(sheen_l::charlie_sheen_l(mu, alpha, tol))
     } else if alpha <= sheen_wide::MAX_ALPHA {
@@ -185,8 +196,8 @@ pub(crate) fn charlie_kernels(
     };
     let spent = match first {
         Some(Ok(e)) => return Ok(e),
-        Some(Err(n)) => n,
-        None => 0,
+        Some(Err(n)) => n + spent0,
+        None => spent0,
     };
     match crate::integrate::dfg_kernel::charlie_sheen_shared(
         view.column(),
