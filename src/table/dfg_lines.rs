@@ -29,6 +29,11 @@
 //!   the grid's rows by rows 4.1 M). Their albedo behaves like `exp(−c/α)` away from
 //!   grazing: one grid in ln α over every narrow row cost 20.6 M at 512².
 //!
+//! The cloth measurements above were made with the light-direction cloth kernels. Since
+//! the θh kernel ([`sheen_azimuth`](crate::integrate::sheen_azimuth)) took over, the cloth
+//! channel costs 0.87 M / 1.31 M evaluations in all (~10 / ~13 ms of one core at 128² /
+//! 512²) and its plan was left as it was.
+//!
 //! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
 //! Lebesgue constant times the largest column estimate at its nodes); a column's is its
 //! y-interpolation's over its own nodes. Samples that serve as nodes are computed at 1/8 of
@@ -55,6 +60,16 @@ use rayon::prelude::*;
 /// columns, on a grid). Measured on karis-envbrdf's rows: 10.3 → 6.5 M evaluations at 128²,
 /// 79 → 42 M at 512² (cuts at μ = 0.0025 … 0.0625 tried; 0.01 is best at both sizes).
 const GRAZING_BREAK: f64 = 0.1;
+
+/// A second cut of the split sum's rows (not of its grids), in x = √μ: μ ≈ 0.073. A
+/// narrow lobe's row changes faster below it (the masking layer at the horizon, of width
+/// ~α/μ in θl), and one interpolant over [0.1, 1] then often needs degree 64 where two need
+/// 16 and 32. Measured on the evaluations of filament-dfg and karis-envbrdf at 128² / 512²
+/// (2026-11-30): without it 3.95 M / 8.20 M and 3.08 M / 6.90 M; at 0.27, 3.31 M / 7.88 M
+/// and 2.78 M / 7.15 M (cuts at 0.15, 0.2, 0.22, 0.25–0.29, 0.3, 0.35, 0.4 tried, and
+/// three cuts: 0.26–0.28 was best; the same cut on the grids' lines cost more at every
+/// value tried, 0.2, 0.3, 0.5).
+const ROW_BREAK: f64 = 0.27;
 
 /// Below which, in x = √μ, the cloth channel of narrow lobes goes by columns (the strip):
 /// μ = 0.04. There their albedo changes on the scale of μ, and their quadratures are the
@@ -380,12 +395,12 @@ fn grid(
     )
 }
 
-/// The split-sum pair of row j along x = √μ, cut at [`GRAZING_BREAK`].
+/// The split-sum pair of row j along x = √μ, cut at [`GRAZING_BREAK`] and [`ROW_BREAK`].
 fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
     let ax = &ctx.axes[0];
     interp1d::line_with_node_tol(
         xs,
-        &[GRAZING_BREAK],
+        &[GRAZING_BREAK, ROW_BREAK],
         2,
         ctx.tol,
         ctx.tol * interp1d::NODE_TOL_FRACTION,
