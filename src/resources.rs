@@ -145,9 +145,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     // texels, 2026-11-30; 2,075 before), at ~40 ns each rather than 100 ns
     let albedo = if vgroove {
         2_000.0
-    } else if polar_albedo {
-        100.0
-    } else if cloth_albedo {
+    } else if polar_albedo || cloth_albedo {
         100.0
     } else {
         1_500.0
