@@ -258,11 +258,13 @@ pub(super) fn cloth_sample((v, e, n): (f64, f64, u64)) -> interp1d::Sample {
     }
 }
 
-/// A whole table's values without per-texel allocations: channel c of texel t (axis 0
-/// fastest) at `value[t·channels + c]`, its error estimate at the same index of `error`.
+/// A whole table as it is stored, without per-texel allocations: channel c of texel t
+/// (axis 0 fastest) at `data[t·channels + c]` (f32), the largest error estimate of each
+/// channel, and the first texel (lowest index t, then channel) whose value is not finite in
+/// f64 or f32, with that value.
 pub(crate) struct Dense {
-    pub channels: usize,
-    pub value: Vec<f64>,
-    pub error: Vec<f64>,
+    pub data: Vec<f32>,
+    pub max_error: Vec<f64>,
     pub evals: u64,
+    pub non_finite: Option<(usize, usize, f64)>,
 }

@@ -460,24 +460,33 @@ enum Grid {
     Narrow,
 }
 
-/// Where texel (i, j)'s channels are: the line and the index of its first channel.
-fn locate<'a>(
-    grids: &'a [(RoughnessLine, LineValues)],
-    rows: &'a [Option<LineValues>],
-    nc: usize,
-    i: usize,
-    j: usize,
-    grid_of_row: &[Option<(usize, usize)>],
-) -> (&'a LineValues, usize) {
-    match grid_of_row[j] {
-        Some((g, k)) => (&grids[g].1, (i * grids[g].0.ys.len() + k) * nc),
-        None => (
-            rows[j]
-                .as_ref()
-                .expect("every row is on a grid or its own line"),
-            i * nc,
-        ),
+/// Texel i of a row in a line's values: at `base + (i − i0)·stride` (a grid holds a row's
+/// texels a column apart, a row line holds them in order).
+struct Strided<'a> {
+    line: &'a LineValues,
+    i0: usize,
+    base: usize,
+    stride: usize,
+}
+
+impl<'a> Strided<'a> {
+    fn new(line: &'a LineValues, i0: usize, base: usize, stride: usize) -> Self {
+        Strided {
+            line,
+            i0,
+            base,
+            stride,
+        }
     }
+    fn at(&self, i: usize) -> usize {
+        self.base + (i - self.i0) * self.stride
+    }
+}
+
+/// Where a row's cloth channel is: in a line, or, texel i, at index k of column line i.
+enum Source<'a> {
+    Strided(Strided<'a>),
+    Columns(&'a [LineValues], usize),
 }
 
 /// For each row of an axis of `ny` rows, (grid, position) if it is on one of `lines`.
@@ -495,9 +504,19 @@ fn positions<'a>(
 }
 
 /// The whole table by lines (see the module doc); `None` where [`interpolated`] says no.
-/// Results in texel order (μ fastest), without per-texel allocations. `stop()` true makes
-/// every remaining sample a cheap zero (the caller then discards the table).
+/// Results in texel order (μ fastest), as stored (f32), without per-texel allocations.
+/// `stop()` true makes every remaining sample a cheap zero (the caller then discards the
+/// table).
 pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
+    bake_with(spec, stop, false).map(|(d, _)| d)
+}
+
+/// Each texel's f64 values and their estimates, `(value, error)` in texel order.
+type Detail = (Vec<f64>, Vec<f64>);
+
+/// [`bake`], and with `detail` each texel's f64 values and estimates too (`(value, error)`
+/// in texel order, 3 channels; the tests).
+fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Option<Detail>)> {
     if !interpolated(spec) {
         return None;
     }
@@ -589,19 +608,14 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
         .cloth_grid
         .as_ref()
         .map(|_| grids.next().expect("one per job"));
-    let mut out = Dense {
-        channels: if ctx.cloth { 3 } else { 2 },
-        value: Vec::with_capacity(nx * ny * 3),
-        error: Vec::with_capacity(nx * ny * 3),
-        evals: 0,
-    };
-    out.evals += pair_grids.iter().map(|l| l.evals).sum::<u64>();
+    let nch = if ctx.cloth { 3 } else { 2 };
+    let mut evals = pair_grids.iter().map(|l| l.evals).sum::<u64>();
     for l in pair_rows.iter().chain(&cloth_rows).flatten() {
-        out.evals += l.evals;
+        evals += l.evals;
     }
-    out.evals += cloth_grid.as_ref().map_or(0, |l| l.evals);
-    out.evals += narrow_grid.as_ref().map_or(0, |l| l.evals);
-    out.evals += strip
+    evals += cloth_grid.as_ref().map_or(0, |l| l.evals);
+    evals += narrow_grid.as_ref().map_or(0, |l| l.evals);
+    evals += strip
         .iter()
         .chain(&cloth_columns)
         .map(|l| l.evals)
@@ -616,25 +630,114 @@ pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
     let columns_at = positions(p.cloth_columns.iter(), ny);
     let narrow_at = positions(p.narrow_grid.iter(), ny);
     let nn = p.narrow_grid.as_ref().map_or(0, |l| l.ys.len());
-    for j in 0..ny {
-        for i in 0..nx {
-            let (l, c) = locate(&pair_grids, &pair_rows, 2, i, j, &pair_at);
-            out.value.extend_from_slice(&l.value[c..c + 2]);
-            out.error.extend_from_slice(&l.error[c..c + 2]);
-            if !ctx.cloth {
-                continue;
-            }
-            let (l, c) = match (strip_at[j], columns_at[j], narrow_at[j], &narrow_grid) {
-                (Some((_, k)), _, _, _) if i < k0 => (&strip[i], k),
-                (_, Some((_, k)), _, _) => (&cloth_columns[i], k),
-                (_, _, Some((_, k)), Some(g)) => (g, (i - k0) * nn + k),
-                _ => locate(&cloth_grids, &cloth_rows, 1, i, j, &cloth_at),
+    // Each row's channels from the lines that hold them, resolved once per row (at 512²,
+    // looking the line up texel by texel cost ~13 ms after the lines were done); rows in
+    // parallel.
+    let pair_src = |j: usize| match pair_at[j] {
+        Some((g, k)) => Strided::new(&pair_grids[g].1, 0, k * 2, pair_grids[g].0.ys.len() * 2),
+        None => Strided::new(
+            pair_rows[j]
+                .as_ref()
+                .expect("every row is on a grid or its own line"),
+            0,
+            0,
+            2,
+        ),
+    };
+    // the cloth channel of row j from column i_from on; below `i_from`, the strip's columns
+    let cloth_src = |j: usize| -> (usize, Source) {
+        let i_from = if strip_at[j].is_some() { k0 } else { 0 };
+        let src = match (columns_at[j], narrow_at[j], &narrow_grid) {
+            (Some((_, k)), _, _) => Source::Columns(&cloth_columns, k),
+            (_, Some((_, k)), Some(g)) => Source::Strided(Strided::new(g, k0, k, nn)),
+            _ => Source::Strided(match cloth_at[j] {
+                Some((g, k)) => Strided::new(&cloth_grids[g].1, 0, k, cloth_grids[g].0.ys.len()),
+                None => Strided::new(
+                    cloth_rows[j]
+                        .as_ref()
+                        .expect("every row is on a grid or its own line"),
+                    0,
+                    0,
+                    1,
+                ),
+            }),
+        };
+        (i_from, src)
+    };
+    // (per row: the largest error of each channel, the first non-finite value)
+    let mut data = vec![0.0f32; nx * ny * nch];
+    type Row = ([f64; 3], Option<(usize, usize, f64)>, Vec<f64>, Vec<f64>);
+    let rows: Vec<Row> = data
+        .par_chunks_mut(nx * nch)
+        .enumerate()
+        .map(|(j, row)| {
+            let mut max_error = [0.0f64; 3];
+            let mut non_finite = None;
+            let n_detail = if detail { nx * nch } else { 0 };
+            let (mut dv, mut de) = (vec![0.0; n_detail], vec![0.0; n_detail]);
+            let mut put = |i: usize, c: usize, v: f64, e: f64| {
+                if detail {
+                    dv[i * nch + c] = v;
+                    de[i * nch + c] = e;
+                }
+                let k = (j * nx + i) * nch + c;
+                if !(v.is_finite() && (v as f32).is_finite())
+                    && non_finite.is_none_or(|(first, _, _)| k < first)
+                {
+                    non_finite = Some((k, c, v));
+                }
+                row[i * nch + c] = v as f32;
+                max_error[c] = max_error[c].max(e);
             };
-            out.value.push(l.value[c]);
-            out.error.push(l.error[c]);
+            let pair = pair_src(j);
+            for i in 0..nx {
+                let at = pair.at(i);
+                for c in 0..2 {
+                    put(i, c, pair.line.value[at + c], pair.line.error[at + c]);
+                }
+            }
+            if ctx.cloth {
+                let (i_from, src) = cloth_src(j);
+                let strip_k = strip_at[j].map_or(0, |(_, k)| k);
+                for i in 0..nx {
+                    let (l, at) = if i < i_from {
+                        (&strip[i], strip_k)
+                    } else {
+                        match &src {
+                            Source::Columns(ls, k) => (&ls[i], *k),
+                            Source::Strided(s) => (s.line, s.at(i)),
+                        }
+                    };
+                    put(i, 2, l.value[at], l.error[at]);
+                }
+            }
+            (max_error, non_finite, dv, de)
+        })
+        .collect();
+    let mut max_error = vec![0.0f64; nch];
+    for (e, ..) in &rows {
+        for c in 0..nch {
+            max_error[c] = max_error[c].max(e[c]);
         }
     }
-    Some(out)
+    // the first in texel order (then channel order): the lowest index into `data`
+    let non_finite = rows
+        .iter()
+        .filter_map(|r| r.1)
+        .min_by_key(|&(k, _, _)| k)
+        .map(|(k, c, v)| (k / nch, c, v));
+    let detail = detail.then(|| {
+        let value = rows.iter().flat_map(|r| r.2.iter().copied()).collect();
+        let error = rows.iter().flat_map(|r| r.3.iter().copied()).collect();
+        (value, error)
+    });
+    let out = Dense {
+        data,
+        max_error,
+        evals,
+        non_finite,
+    };
+    Some((out, detail))
 }
 
 #[cfg(test)]
@@ -733,7 +836,8 @@ mod tests {
     fn check_lines(s: &TableSpec, cols: &[usize], rows: &[usize]) {
         let tol = s.tolerance;
         let (nx, ny) = (s.axes[0].size, s.axes[1].size);
-        let table = bake(s, &|| false).expect("a GGX dfg table goes by lines");
+        let (table, detail) = bake_with(s, &|| false, true).expect("a GGX dfg table goes by lines");
+        let (value, error) = detail.expect("asked for");
         let ctx = Ctx::new(s);
         let (mut checked, mut texel_evals) = (0u64, 0u64);
         for j in 0..ny {
@@ -746,7 +850,8 @@ mod tests {
                 checked += 1;
                 let t = j * nx + i;
                 for c in 0..3 {
-                    let (v, e) = (table.value[3 * t + c], table.error[3 * t + c]);
+                    let (v, e) = (value[3 * t + c], error[3 * t + c]);
+                    assert_eq!(table.data[3 * t + c], v as f32);
                     let d = (v - fine.value[c]).abs();
                     assert!(
                         d <= e + fine.error[c],
@@ -823,14 +928,15 @@ mod tests {
     fn short_lines_are_the_column_values() {
         for (nx, short) in [(40, false), (8, true)] {
             let s = spec(nx, [0.1, 0.9], 3, true, 1e-7);
-            let lines = bake(&s, &|| false).expect("by lines");
+            let (_, detail) = bake_with(&s, &|| false, true).expect("by lines");
+            let (value, error) = detail.expect("asked for");
             let column = super::super::dfg::column_fn(&s);
             for i in 0..nx {
                 let col = column(i);
                 for (j, c) in col.iter().enumerate() {
                     let t = 3 * (j * nx + i);
                     for k in 0..3 {
-                        let (v, e) = (lines.value[t + k], lines.error[t + k]);
+                        let (v, e) = (value[t + k], error[t + k]);
                         if short {
                             assert_eq!(v.to_bits(), c.value[k].to_bits());
                         } else {

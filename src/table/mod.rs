@@ -192,12 +192,29 @@ pub fn bake_until(
     }
     // texel i (axis 0 fastest)
     let nc = channels.len();
+    if let Some(d) = dense {
+        if let Some((i, c, value)) = d.non_finite {
+            return Err(BakeError::NonFinite {
+                name: spec.name.clone(),
+                texel: [
+                    i % dims[0],
+                    (i / dims[0]) % dims[1],
+                    i / (dims[0] * dims[1]),
+                ],
+                channel: channels[c].name.clone(),
+                value,
+            });
+        }
+        return Ok(Lut {
+            axes: spec.axes.clone(),
+            channels,
+            data: d.data,
+            error_estimate: d.max_error,
+            evaluations: d.evals,
+        });
+    }
     // texel i's values, error estimates and evaluations
     let result = |i: usize| -> (&[f64], &[f64], u64) {
-        if let Some(d) = &dense {
-            let k = i * d.channels;
-            return (&d.value[k..k + nc], &d.error[k..k + nc], 0);
-        }
         let r = if by_column {
             &blocks[i % dims[0]][i / dims[0]]
         } else if fibre.is_some() {
@@ -210,7 +227,7 @@ pub fn bake_until(
     };
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
-    let mut evals = dense.as_ref().map_or(0, |d| d.evals);
+    let mut evals = 0;
     for i in 0..n {
         let (value, error, texel_evals) = result(i);
         for c in 0..nc {
