@@ -14,7 +14,8 @@
 //! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²,
 //! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
-//! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α): 3.8 M / 5.4 M (by
+//! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α) (since in (√μ, ln α):
+//!   [`RoughnessVar::Ln`]): 3.8 M / 5.4 M (by
 //!   rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by rows
 //!   7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
 //!   rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
@@ -129,7 +130,7 @@ const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
 pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
 /// Whether [`bake`] bakes this table: 2D dfg tables whose split-sum channels go through the
-/// GGX kernels (analytic in √μ along a row, in √α along a column), with view cosines
+/// GGX kernels (analytic in √μ along a row, in ln α along a column), with view cosines
 /// increasing and positive. Lines too short to pay are computed texel by texel inside
 /// [`interp1d`].
 pub fn interpolated(spec: &TableSpec) -> bool {
@@ -147,11 +148,15 @@ pub fn interpolated(spec: &TableSpec) -> bool {
 /// The variable in which a line along the roughness axis is interpolated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum RoughnessVar {
-    /// y = √α: GGX's split sum (a function of α² as α → 0) and the wide cloth lobes
-    /// (`sin^{1/α}`, analytic in 1/α away from α = 0) are analytic in it.
+    /// y = √α: the wide cloth lobes (`sin^{1/α}`, analytic in 1/α away from α = 0).
     Sqrt,
     /// y = ln α: the narrow cloth lobes near grazing, whose albedo changes on the scale of α
-    /// itself as α → 0.
+    /// itself as α → 0, and the split sum's grids: near grazing, where most of a grid's
+    /// quadratures go, the split sum changes on the scale of α too. Measured on the
+    /// evaluations of filament-dfg and karis-envbrdf at 128² / 512² (2026-11-30): in √α
+    /// 3.31 M / 7.88 M and 2.78 M / 7.15 M, in ln α 2.98 M / 7.56 M and 2.72 M / 6.92 M
+    /// (in α: 5.38 M / 12.45 M and 4.06 M / 9.53 M; in α^p, p = 0.05 … 0.35, between √α and
+    /// ln α).
     Ln,
 }
 
@@ -236,7 +241,7 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
         if rows.len() < GRID_MIN_ROWS || nx < GRID_MIN_COLUMNS {
             continue;
         }
-        if let Some(l) = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows) {
+        if let Some(l) = RoughnessLine::new(ay, RoughnessVar::Ln, rows) {
             for &j in &l.row {
                 on_grid[j] = true;
             }
