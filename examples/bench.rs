@@ -4,7 +4,9 @@
 //! max error (from `bake --json`, the same numbers the sidecar records), measured max error
 //! against the test suite's independent reference integrator (`tests/common/reference.rs`,
 //! included by path) and peak RSS of the process (`wait4` rusage). Then the issue-5 rows
-//! (filament-dfg at 512² on 1 and 2 threads, every preset in one process) and the targets.
+//! (filament-dfg at 512² on 1 and 2 threads, their runs interleaved so that the speed-up is
+//! not the machine's drift between two sets of runs; every preset in one process) and the
+//! targets.
 //!
 //! ```text
 //! cargo build --release && cargo run --release --example bench -- [options]
@@ -201,50 +203,82 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn measure(a: &Args, presets: &[PathBuf], out: &Path, threads: usize) -> Measured {
-    let mut args: Vec<String> = vec!["bake".into()];
-    args.extend(presets.iter().map(|p| p.display().to_string()));
-    args.extend([
-        "--out".into(),
-        out.display().to_string(),
-        "--threads".into(),
-        threads.to_string(),
-        "--json".into(),
-    ]);
-    let mut walls = Vec::new();
-    let mut cpus = Vec::new();
-    let mut rss = 0;
-    let mut tables: Vec<Vec<f64>> = Vec::new();
-    let mut json = Value::Null;
+    measure_interleaved(a, presets, out, &[threads])
+        .0
+        .pop()
+        .expect("one configuration")
+}
+
+/// [`measure`] for several thread counts, their runs interleaved (run r of every count
+/// before run r + 1 of any: the machine's speed drifts over minutes, and a ratio of two
+/// configurations measured minutes apart would carry that drift), with each run's wall
+/// times (the second value, `[run][count]`).
+fn measure_interleaved(
+    a: &Args,
+    presets: &[PathBuf],
+    out: &Path,
+    thread_counts: &[usize],
+) -> (Vec<Measured>, Vec<Vec<f64>>) {
+    let args = |threads: usize| {
+        let mut args: Vec<String> = vec!["bake".into()];
+        args.extend(presets.iter().map(|p| p.display().to_string()));
+        args.extend([
+            "--out".into(),
+            out.display().to_string(),
+            "--threads".into(),
+            threads.to_string(),
+            "--json".into(),
+        ]);
+        args
+    };
+    let k = thread_counts.len();
+    let mut walls = vec![Vec::new(); k];
+    let mut cpus = vec![Vec::new(); k];
+    let mut rss = vec![0; k];
+    let mut tables: Vec<Vec<Vec<f64>>> = vec![Vec::new(); k];
+    let mut json = vec![Value::Null; k];
+    let mut per_run = Vec::new();
     for r in 0..a.runs {
-        let (w, m, cpu, s) = run_once(&a.bin, &args);
-        walls.push(w);
-        cpus.push(cpu);
-        rss = rss.max(m);
-        json = serde_json::from_str(&s).expect("bake --json prints JSON");
-        let secs: Vec<f64> = json["tables"]
-            .as_array()
-            .expect("tables")
-            .iter()
-            .map(|t| t["seconds"].as_f64().unwrap_or(f64::NAN) * 1e3)
-            .collect();
-        if tables.is_empty() {
-            tables = vec![Vec::new(); secs.len()];
+        let mut run = Vec::new();
+        for (c, &threads) in thread_counts.iter().enumerate() {
+            let (w, m, cpu, s) = run_once(&a.bin, &args(threads));
+            walls[c].push(w);
+            run.push(w);
+            cpus[c].push(cpu);
+            rss[c] = rss[c].max(m);
+            json[c] = serde_json::from_str(&s).expect("bake --json prints JSON");
+            let secs: Vec<f64> = json[c]["tables"]
+                .as_array()
+                .expect("tables")
+                .iter()
+                .map(|t| t["seconds"].as_f64().unwrap_or(f64::NAN) * 1e3)
+                .collect();
+            if tables[c].is_empty() {
+                tables[c] = vec![Vec::new(); secs.len()];
+            }
+            for (t, s) in tables[c].iter_mut().zip(secs) {
+                t.push(s);
+            }
         }
-        for (t, s) in tables.iter_mut().zip(secs) {
-            t.push(s);
-        }
-        if r == 0 && w > a.repeat_limit * 1e3 {
+        per_run.push(run);
+        if r == 0 && walls.iter().any(|w| w[0] > a.repeat_limit * 1e3) {
             break;
         }
     }
-    Measured {
-        wall_ms: median(walls.clone()),
-        cpu_ms: median(cpus),
-        rss_kib: rss,
-        runs: walls.len(),
-        table_ms: tables.into_iter().map(median).collect(),
-        json,
-    }
+    let measured = (0..k)
+        .map(|c| Measured {
+            wall_ms: median(walls[c].clone()),
+            cpu_ms: median(cpus[c].clone()),
+            rss_kib: rss[c],
+            runs: walls[c].len(),
+            table_ms: std::mem::take(&mut tables[c])
+                .into_iter()
+                .map(median)
+                .collect(),
+            json: std::mem::take(&mut json[c]),
+        })
+        .collect();
+    (measured, per_run)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -639,6 +673,7 @@ fn main() {
 
     // filament-dfg at 512², 1 and 2 threads
     let mut large: Vec<(usize, f64, u64)> = Vec::new();
+    let mut speedup = None;
     let fil = a
         .presets
         .iter()
@@ -655,14 +690,16 @@ fn main() {
         let p512 = a.work.join(format!("{large_name}.json"));
         std::fs::write(&p512, serde_json::to_string_pretty(&v).expect("json"))
             .expect("write preset");
-        for (i, threads) in [1usize, 2].into_iter().enumerate() {
-            eprintln!("bench: {large_name} on {threads} thread(s) ...");
-            let m = measure(
-                &a,
-                std::slice::from_ref(&p512),
-                &a.work.join("large"),
-                threads,
-            );
+        eprintln!("bench: {large_name} on 1 and 2 threads, runs interleaved ...");
+        let (ms, per_run) = measure_interleaved(
+            &a,
+            std::slice::from_ref(&p512),
+            &a.work.join("large"),
+            &[1, 2],
+        );
+        // the speed-up: the median of each run's 1-thread / 2-thread ratio
+        speedup = Some(median(per_run.iter().map(|r| r[0] / r[1]).collect()));
+        for (i, (threads, m)) in [1usize, 2].into_iter().zip(ms).enumerate() {
             let errs = (a.error && i == 0).then(|| table_errors(&m.json, a.ref_points));
             large.push((threads, m.wall_ms, m.rss_kib));
             let mut rows = rows_of(&large_name, &m, threads, errs.as_deref());
@@ -720,13 +757,9 @@ fn main() {
             n = a.large_size
         );
     }
-    if let (Some(one), Some(two)) = (
-        large.iter().find(|l| l.0 == 1),
-        large.iter().find(|l| l.0 == 2),
-    ) {
-        let s = one.1 / two.1;
+    if let Some(s) = speedup {
         println!(
-            "| 1 → 2 threads speed-up, {n}² | ≥ 1.8× at 512² | {s:.2}× | {} |",
+            "| 1 → 2 threads speed-up, {n}² (median of the runs' ratios, runs interleaved) | ≥ 1.8× at 512² | {s:.2}× | {} |",
             verdict(s >= 1.8),
             n = a.large_size
         );
