@@ -457,6 +457,27 @@ fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: St
     out
 }
 
+/// One job of [`bake`] and what it returns.
+type Job<'a> = Box<dyn FnOnce() -> Done + Send + 'a>;
+enum Done {
+    Grid(LineValues),
+    Rows(Vec<Option<LineValues>>),
+    Columns(Vec<LineValues>, Vec<LineValues>),
+}
+
+/// The jobs' results in their order, each job started as soon as a thread is free, the
+/// first at once: nested `rayon::join`s, the first job on this thread and the rest stealable
+/// as one task (a thread that steals it runs the next job and leaves the rest stealable).
+fn in_order(mut jobs: Vec<Job<'_>>) -> Vec<Done> {
+    if jobs.is_empty() {
+        return Vec::new();
+    }
+    let first = jobs.remove(0);
+    let (a, mut rest) = rayon::join(first, move || in_order(jobs));
+    rest.insert(0, a);
+    rest
+}
+
 /// What a grid job computes.
 #[derive(Clone, Copy)]
 enum Grid {
@@ -568,57 +589,64 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
             || columns(&p.cloth_columns, nx, COLUMN_NODE_TOL_FRACTION),
         )
     };
-    // The grids first, costliest first: each is a chain of batches, so one started last
-    // would end last (measured at 512²: the narrow grid, started last, ended ~50 ms after
-    // everything else); the rows and columns, all independent, fill the gaps between batches.
-    // Since the θh cloth kernel the split sum's widest band is the costliest by far (at 512²
-    // one core's 62 ms against 37 for the next band and 12–17 for the cloth grids), so it
-    // goes first (the first job starts at once; the others wait until a thread is free):
-    // filament-dfg 512² 0.15 → 0.14 s wall on 2 threads (median of 5, interleaved).
-    let jobs: Vec<(Grid, &RoughnessLine)> = p
-        .pair_grids
-        .iter()
-        .rev()
-        .map(|rl| (Grid::Pair, rl))
-        .chain(p.cloth_grid.iter().map(|rl| (Grid::Wide, rl)))
-        .chain(p.narrow_grid.iter().map(|rl| (Grid::Narrow, rl)))
-        .collect();
-    let grids = || -> Vec<LineValues> {
-        jobs.par_iter()
-            .with_max_len(1)
-            .map(|&(kind, rl)| match kind {
-                Grid::Pair => grid(
-                    ax,
-                    &xs,
-                    0,
-                    &[GRAZING_BREAK],
-                    2 * rl.ys.len(),
-                    tol,
-                    &|mu, t| ctx.pair_column(rl, mu, t, stop),
-                ),
-                Grid::Wide => grid(ax, &xs, 0, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
-                    ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop)
-                }),
-                Grid::Narrow => grid(ax, &xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
-                    ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
-                }),
-            })
-            .collect()
+    // Every job (grid, set of rows, set of columns) in order of decreasing cost, each started
+    // as soon as a thread is free ([`in_order`]). A grid is a chain of batches, so one started
+    // late ends late: at 512², with the grids started first and the rows and columns filling
+    // the gaps, the split sum's second band started when its widest band ended and ran ~50 ms
+    // on its own at the end. Costs of one core at 512² (2026-11-30): the pair's widest band
+    // 62 ms, its second band 37, its rows 50, the cloth grids 12–17, the cloth rows 5.
+    let grid_job = |kind: Grid, rl: &RoughnessLine| match kind {
+        Grid::Pair => grid(
+            ax,
+            &xs,
+            0,
+            &[GRAZING_BREAK],
+            2 * rl.ys.len(),
+            tol,
+            &|mu, t| ctx.pair_column(rl, mu, t, stop),
+        ),
+        Grid::Wide => grid(ax, &xs, 0, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
+            ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop)
+        }),
+        Grid::Narrow => grid(ax, &xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
+            ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
+        }),
     };
-    let (grids, ((strip, cloth_columns), (pair_rows, cloth_rows))) = rayon::join(grids, || {
-        rayon::join(column_sets, || rayon::join(pair_rows, cloth_rows))
-    });
-    let mut grids = grids.into_iter();
-    let mut pair_grids: Vec<LineValues> = grids.by_ref().take(p.pair_grids.len()).collect();
+    let mut jobs: Vec<Job> = Vec::new();
+    for rl in p.pair_grids.iter().rev() {
+        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Pair, rl))));
+    }
+    jobs.push(Box::new(|| Done::Rows(pair_rows())));
+    if let Some(rl) = &p.cloth_grid {
+        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Wide, rl))));
+    }
+    if let Some(rl) = &p.narrow_grid {
+        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Narrow, rl))));
+    }
+    jobs.push(Box::new(|| Done::Rows(cloth_rows())));
+    jobs.push(Box::new(|| {
+        let (a, b) = column_sets();
+        Done::Columns(a, b)
+    }));
+    let mut done = in_order(jobs).into_iter();
+    let grid_of = |d: Option<Done>| match d {
+        Some(Done::Grid(l)) => l,
+        _ => unreachable!("jobs come back in order"),
+    };
+    let mut pair_grids: Vec<LineValues> = (0..p.pair_grids.len())
+        .map(|_| grid_of(done.next()))
+        .collect();
     pair_grids.reverse();
-    let cloth_grid = p
-        .cloth_grid
-        .as_ref()
-        .map(|_| grids.next().expect("one per job"));
-    let narrow_grid = p
-        .narrow_grid
-        .as_ref()
-        .map(|_| grids.next().expect("one per job"));
+    let Some(Done::Rows(pair_rows)) = done.next() else {
+        unreachable!("jobs come back in order")
+    };
+    let cloth_grid = p.cloth_grid.as_ref().map(|_| grid_of(done.next()));
+    let narrow_grid = p.narrow_grid.as_ref().map(|_| grid_of(done.next()));
+    let (Some(Done::Rows(cloth_rows)), Some(Done::Columns(strip, cloth_columns))) =
+        (done.next(), done.next())
+    else {
+        unreachable!("jobs come back in order")
+    };
     let nch = if ctx.cloth { 3 } else { 2 };
     let mut evals = pair_grids.iter().map(|l| l.evals).sum::<u64>();
     for l in pair_rows.iter().chain(&cloth_rows).flatten() {
