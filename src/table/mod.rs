@@ -192,18 +192,20 @@ pub fn bake_until(
     }
     // texel i (axis 0 fastest)
     let nc = channels.len();
+    // the error for channel c of texel i, whose value is not finite in f64 or f32
+    let non_finite = |i: usize, c: usize, value: f64| BakeError::NonFinite {
+        name: spec.name.clone(),
+        texel: [
+            i % dims[0],
+            (i / dims[0]) % dims[1],
+            i / (dims[0] * dims[1]),
+        ],
+        channel: channels[c].name.clone(),
+        value,
+    };
     if let Some(d) = dense {
         if let Some((i, c, value)) = d.non_finite {
-            return Err(BakeError::NonFinite {
-                name: spec.name.clone(),
-                texel: [
-                    i % dims[0],
-                    (i / dims[0]) % dims[1],
-                    i / (dims[0] * dims[1]),
-                ],
-                channel: channels[c].name.clone(),
-                value,
-            });
+            return Err(non_finite(i, c, value));
         }
         return Ok(Lut {
             axes: spec.axes.clone(),
@@ -233,16 +235,7 @@ pub fn bake_until(
         for c in 0..nc {
             let v = value[c];
             if !v.is_finite() || !(v as f32).is_finite() {
-                return Err(BakeError::NonFinite {
-                    name: spec.name.clone(),
-                    texel: [
-                        i % dims[0],
-                        (i / dims[0]) % dims[1],
-                        i / (dims[0] * dims[1]),
-                    ],
-                    channel: channels[c].name.clone(),
-                    value: v,
-                });
+                return Err(non_finite(i, c, v));
             }
             data.push(v as f32);
             err[c] = err[c].max(error[c]);
