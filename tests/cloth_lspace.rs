@@ -19,20 +19,16 @@
 //!   relative rounding (`exp(k ln(sin²θh/s0))`: |k ln|·2⁻⁵³ ≤ 700·2⁻⁵³ ≈ 8e-14 before it is
 //!   cut) is of the same order.
 
+#[path = "common/cloth_reference.rs"]
+mod cloth_reference;
 #[path = "common/reference.rs"]
 mod reference;
 
 use brdfbake::integrate::sheen_l::{charlie_sheen_l, EVAL_CAP, MAX_ALPHA};
-use brdfbake::model::{Masking, NdfKind};
-use brdfbake::table::dfg::sheen_albedo_adaptive;
+use cloth_reference::{cloth_reference, fails};
 use rayon::prelude::*;
-use reference::RefModel;
 
 const LIB_TOL: f64 = 1e-7;
-/// Below this α the points are compared with the adaptive integrator instead.
-const REF_MIN_ALPHA: f64 = 0.01;
-const REQ: f64 = 1e-6;
-const REF_TOL: f64 = 1e-10;
 
 fn round(v: f64) -> f64 {
     1e-12 * v.abs().max(1.0)
@@ -78,23 +74,11 @@ fn lspace_cloth_matches_reference_and_its_estimate_holds() {
     let res: Vec<(bool, Option<String>)> = pts
         .par_iter()
         .map(|&(mu, alpha)| {
-            let m = RefModel::new(NdfKind::Charlie, alpha, Masking::Ashikhmin);
             match charlie_sheen_l(mu, alpha, LIB_TOL) {
                 Ok(e) => {
-                    let r = if alpha >= REF_MIN_ALPHA {
-                        reference::albedo(&m, mu, REF_TOL)
-                    } else {
-                        let (v, e, n) = sheen_albedo_adaptive(alpha, mu, 0.1 * LIB_TOL);
-                        reference::Est {
-                            value: [v],
-                            error: e,
-                            evals: n,
-                        }
-                    };
+                    let r = cloth_reference(mu, alpha, 0.1 * LIB_TOL);
                     let d = (e.value[0] - r.value[0]).abs();
-                    let bad = d > REQ * r.value[0].abs().max(1.0)
-                        || d > e.error[0] + r.error + round(r.value[0])
-                        || e.error[0] > LIB_TOL;
+                    let bad = fails(e.value[0], e.error[0], LIB_TOL, &r, round(r.value[0]));
                     (
                         true,
                         bad.then(|| {
@@ -215,16 +199,14 @@ fn wide_lspace_cloth_matches_reference_and_its_estimate_holds() {
     let failures: Vec<String> = pts
         .par_iter()
         .filter_map(|&(mu, alpha)| {
-            let m = RefModel::new(NdfKind::Charlie, alpha, Masking::Ashikhmin);
             let e = match charlie_sheen_wide(mu, alpha, LIB_TOL) {
                 Ok(e) => e,
                 Err(n) => return Some(format!("mu={mu} alpha={alpha}: gave up after {n} evaluations")),
             };
-            let r = reference::albedo(&m, mu, REF_TOL);
+            // (α ≥ 1/16: the independent reference)
+            let r = cloth_reference(mu, alpha, 0.1 * LIB_TOL);
             let d = (e.value[0] - r.value[0]).abs();
-            let bad = d > REQ * r.value[0].abs().max(1.0)
-                || d > e.error[0] + r.error + round(r.value[0])
-                || e.error[0] > LIB_TOL
+            let bad = fails(e.value[0], e.error[0], LIB_TOL, &r, round(r.value[0]))
                 || e.evals > sheen_wide::EVAL_CAP + 2 * 65;
             bad.then(|| {
                 format!(
