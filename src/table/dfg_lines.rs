@@ -478,14 +478,6 @@ fn in_order(mut jobs: Vec<Job<'_>>) -> Vec<Done> {
     rest
 }
 
-/// What a grid job computes.
-#[derive(Clone, Copy)]
-enum Grid {
-    Pair,
-    Wide,
-    Narrow,
-}
-
 /// Texel i of a row in a line's values: at `base + (i − i0)·stride` (a grid holds a row's
 /// texels a column apart, a row line holds them in order).
 struct Strided<'a> {
@@ -595,33 +587,42 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
     // the gaps, the split sum's second band started when its widest band ended and ran ~50 ms
     // on its own at the end. Costs of one core at 512² (2026-11-30): the pair's widest band
     // 62 ms, its second band 37, its rows 50, the cloth grids 12–17, the cloth rows 5.
-    let grid_job = |kind: Grid, rl: &RoughnessLine| match kind {
-        Grid::Pair => grid(
-            ax,
-            &xs,
-            0,
-            &[GRAZING_BREAK],
-            2 * rl.ys.len(),
-            tol,
-            &|mu, t| ctx.pair_column(rl, mu, t, stop),
-        ),
-        Grid::Wide => grid(ax, &xs, 0, &[GRAZING_BREAK], rl.ys.len(), tol, &|mu, t| {
-            ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop)
-        }),
-        Grid::Narrow => grid(ax, &xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
-            ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
-        }),
-    };
     let mut jobs: Vec<Job> = Vec::new();
+    // (the jobs own their references)
+    let (xs, ctx) = (&xs[..], &ctx);
     for rl in p.pair_grids.iter().rev() {
-        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Pair, rl))));
+        jobs.push(Box::new(move || {
+            Done::Grid(grid(
+                ax,
+                xs,
+                0,
+                &[GRAZING_BREAK],
+                2 * rl.ys.len(),
+                tol,
+                &|mu, t| ctx.pair_column(rl, mu, t, stop),
+            ))
+        }));
     }
     jobs.push(Box::new(|| Done::Rows(pair_rows())));
     if let Some(rl) = &p.cloth_grid {
-        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Wide, rl))));
+        jobs.push(Box::new(move || {
+            Done::Grid(grid(
+                ax,
+                xs,
+                0,
+                &[GRAZING_BREAK],
+                rl.ys.len(),
+                tol,
+                &|mu, t| ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop),
+            ))
+        }));
     }
     if let Some(rl) = &p.narrow_grid {
-        jobs.push(Box::new(move || Done::Grid(grid_job(Grid::Narrow, rl))));
+        jobs.push(Box::new(move || {
+            Done::Grid(grid(ax, xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
+                ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
+            }))
+        }));
     }
     jobs.push(Box::new(|| Done::Rows(cloth_rows())));
     jobs.push(Box::new(|| {
