@@ -62,14 +62,15 @@ const MIN_C: f64 = 1e-3;
 /// What this path does, for documentation and the benchmarks.
 pub const METHOD: &str = "cloth as a 1D integral over theta_h (src/integrate/sheen_azimuth.rs): the azimuthal integral of V mu_l (v.h) in closed form (partial fractions), nested Clenshaw-Curtis on three panels with square-root warps at the arc's end points, cut below where the lobe is under tol/1000";
 
-/// The view's constants.
-struct View {
+/// The view's constants for K(θh) (not [`View`](super::dfg_kernel::View), the column-shared
+/// view data of the table code).
+struct Azimuth {
     mu_v: f64,
     sv: f64,
     c: f64,
 }
 
-impl View {
+impl Azimuth {
     /// `K(θh)` of the module doc, `(1/u) ∫₀^{φ1} g(m(φ)) dφ`, from `sin θh` and `u = cos θh`.
     fn azimuthal(&self, sin_h: f64, u: f64) -> f64 {
         let (mu_v, c) = (self.mu_v, self.c);
@@ -215,7 +216,7 @@ pub fn charlie_sheen_azimuth_shared(
     if !(mu_v > 0.0 && c >= MIN_C && alpha > 0.0 && alpha.is_finite() && tol > 0.0) {
         return Err(0);
     }
-    let view = View {
+    let view = Azimuth {
         mu_v,
         sv: ((1.0 - mu_v) * (1.0 + mu_v)).sqrt(),
         c,
@@ -339,7 +340,7 @@ mod tests {
     fn azimuthal_integral_matches_quadrature() {
         let (gx, gw) = crate::integrate::gauss::gauss_legendre(40);
         for &mu_v in &[0.001, 0.004, 0.03, 0.2, 0.5, 0.77, 0.95, 0.999] {
-            let view = View {
+            let view = Azimuth {
                 mu_v,
                 sv: ((1.0 - mu_v) * (1.0 + mu_v)).sqrt(),
                 c: 1.0 - mu_v,
