@@ -62,19 +62,32 @@
 //! lobe's poles sit at sinh t = ±i·(lobe width)/w), so each panel is integrated whole by
 //! nested Clenshaw–Curtis rules of 9, 17, 33, 65 nodes in t (Trefethen 2008, "Is Gauss
 //! quadrature better than Clenshaw–Curtis?"), both channels at once, bisected only where
-//! 65 nodes do not reach the tolerance; a panel at most 1.5 long in t (wide lobes), where one
-//! G7/K15 panel usually passes with 15 nodes, by the adaptive Gauss–Kronrod rule
-//! ([`integrate`], estimate |K15 − G7|) instead.
+//! 65 nodes do not reach the tolerance. (Panels at most 1.5 long in t, wide lobes, went to
+//! the adaptive G7/K15 rule until the outer estimate below replaced the interpolation bound:
+//! since then Clenshaw–Curtis needs fewer lines there too.)
 //!
 //! **Error.** The outer rule's estimate plus a bound on the inner rules'. Clenshaw–Curtis
-//! with n + 1 nodes is the exact integral of the interpolant p_n at the Chebyshev points, so
-//! on [a, b] its error is `|∫(f − p_n)| ≤ (b − a) max|f − p_n| ≤ (b − a)·2 Σ_{m>n} |a_m|`
-//! (a_m the Chebyshev coefficients of f; Trefethen, *Approximation Theory and Approximation
-//! Practice*, 2013, thm. 4.2); the sum is estimated by the largest of the interpolant's top
-//! four computed coefficients (the tail test of Chebfun's chopping, ATAP ch. 3), which over-
-//! estimates the quadrature error by the factor ~n²/8 by which ∫T_m (≈ 2/m²) is smaller than
-//! max|T_m| = 1 — the safety margin. (|Q_n − Q_{n/2}| would be the error of the coarser rule,
-//! about as large as the tail at level n/2: it would need twice the nodes.) The inner rules':
+//! with n + 1 nodes integrates a Chebyshev polynomial T_m of degree m > n as its alias
+//! T_{m'} (m' = m reflected into [0, n] modulo 2n: the two agree at the nodes), so on
+//! [a, b] its error is exactly `((b − a)/2)·Σ_{m>n} a_m (I(T_m) − I(T_{m'}))`, a_m the
+//! Chebyshev coefficients of f, `I(T_j) = 2/(1 − j²)` for even j and 0 for odd j (Trefethen
+//! 2008, §5). The weights are small just above n (`8nj/(((n+j)² − 1)((n−j)² − 1))` at
+//! m = n + j, j even; 0 for j odd) and reach ~2 only near m = 2n, where the alias is T_0:
+//! the quadrature error is far below the interpolant's, `(b − a)·2Σ_{m>n}|a_m|` (Trefethen,
+//! *Approximation Theory and Approximation Practice*, 2013, thm. 4.2). The tail is modelled
+//! as `|a_{n+j}| ≤ Ĉ ρ^{−j}`: Ĉ the largest of the interpolant's top four computed
+//! coefficients (the tail test of Chebfun's chopping, ATAP ch. 3), ρ their decay per degree
+//! from the previous level's top four, `(Ĉ_{n/2}/Ĉ_n)^{2/n}`, but at most 2 — so the model's
+//! tail is never lighter than `Σ_{m>n}|a_m| ≤ Ĉ`, the assumption of the interpolation bound
+//! `(b − a)·2Ĉ`; that bound caps the estimate, and is the estimate where the coefficients do
+//! not decay (ρ ≤ 1). The model's error is multiplied by [`TAIL_SAFETY`] = 10: the decay
+//! need not stay geometric beyond n (near normal views it slows), and on a dense sample the
+//! bare model came within 1.1× of the true error. (Until 2026-11-30 the estimate was the
+//! interpolation bound itself, at n = 32 500–1,800 times this one for ρ = 1.5–2: most
+//! panels stopped at 65 nodes instead of 33. |Q_n − Q_{n/2}| would be the error of the
+//! coarser rule: it would need twice the nodes.) The estimate presumes accurate values: noise in them is no tail of
+//! decaying coefficients, which is why the lines' values are computed without cancellation
+//! (see `sin_half`). The inner rules':
 //! an inner error δ(θl) on `(1/π)∫R dφ` moves the Schlick channel by
 //! `∫ k α² δ dθl` with the line's weight `k = sin θl G2/(2μv)`, at most `(π/2) max(k α² δ)`;
 //! each line is asked for `δ ≤ tol/(2π α² k)` (so lines near the horizon, where G2 → 0, are
@@ -91,7 +104,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail, bisected where needed; adaptive Gauss-Kronrod on panels at most 1.5 long) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail integrated with the rule's aliasing, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
 
 /// The Möbius map of the azimuthal rule is used where the nearest singularity has
 /// `tanh(b₀/2)` below this (b₀ ≲ 0.4: lines near grazing); elsewhere its gain did not pay
@@ -402,17 +415,50 @@ fn tail_cos() -> &'static Vec<Vec<f64>> {
     })
 }
 
+/// The factor on the outer estimate's tail model (module doc, "Error"). Measured with
+/// examples/polar_check.rs and on a 100 × 100 grid of (√μ, √α) plus μ = 1 at tolerances
+/// 1e-7 … 1e-9 against the kernel at 1e-13: without it the largest true error / estimate
+/// was 1.12 (μ = 1, α = 0.19, where the coefficients' decay slows beyond n), with it 0.16.
+const TAIL_SAFETY: f64 = 10.0;
+/// The fastest decay per degree the outer estimate's tail model assumes (module doc,
+/// "Error"): at 2, `Σ_{j≥1} Ĉ 2^{−j} = Ĉ`, the tail sum the interpolation bound assumed.
+const TAIL_MAX_DECAY: f64 = 2.0;
+
+/// `Σ_{j≥1} ρ^{−j} |I(T_{n+j}) − I(T_{m'})|`, m' the alias of n + j under the
+/// Clenshaw–Curtis rule with n + 1 nodes (module doc, "Error"): the quadrature error of a
+/// tail `|a_{n+j}| = ρ^{−j}` on [−1, 1]. Summed until the rest, whose terms are each at most
+/// 4 (|I(T_j)| ≤ 2), is below 1e-3 of the sum (or from m = 32n on, for ρ near 1), and
+/// that rest's bound added; `rho` > 1.
+fn alias_weight(n: usize, rho: f64) -> f64 {
+    let integral = |j: usize| {
+        if j % 2 == 1 {
+            0.0
+        } else {
+            2.0 / (1.0 - (j * j) as f64)
+        }
+    };
+    let q = 1.0 / rho;
+    let rest = |f: f64| 4.0 * f * q / (1.0 - q);
+    let (mut f, mut w) = (1.0, 0.0);
+    let mut m = n;
+    loop {
+        m += 1;
+        f *= q;
+        let r = m % (2 * n);
+        let alias = if r <= n { r } else { 2 * n - r };
+        w += f * (integral(m) - integral(alias)).abs();
+        if m > 2 * n && (rest(f) <= 1e-3 * w || m >= 32 * n) {
+            return w + rest(f);
+        }
+    }
+}
+
 /// First and last Clenshaw–Curtis level of the outer rule: 2^3 + 1 = 9 to 2^6 + 1 = 65 nodes.
 const OUTER_MIN_LEVEL: usize = 3;
 const OUTER_MAX_LEVEL: usize = 6;
 /// Most θl lines one panel may spend (bisections included): a pathological integrand costs
 /// bounded time and reports the error it reached.
 const OUTER_MAX_LINES: u64 = 1 << 12;
-/// A panel at most this long in t (wide lobes, short panels) is integrated by the adaptive
-/// G7/K15 rule instead: one K15 panel (15 lines) usually passes there, where the
-/// Clenshaw–Curtis estimate needs 33 nodes (at 3.0 the K15 panels were bisected more often
-/// than not: more lines; measured with examples/polar_cost.rs).
-const SHORT_PANEL: f64 = 1.5;
 
 /// ∫ₐᵇ f (both channels) by nested Clenshaw–Curtis levels [`OUTER_MIN_LEVEL`]`..=`
 /// [`OUTER_MAX_LEVEL`], stopping at the first whose estimate (the module doc's "Error") is at
@@ -435,6 +481,8 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
     let mut vals = [[0.0f64; 2]; NV];
     let mut last = Estimate::<2>::zero();
+    // Ĉ of the previous level, per channel (the decay rate's reference)
+    let mut prev_top = [0.0f64; 2];
     for k in 1..=OUTER_MAX_LEVEL {
         let ls = 1usize << (OUTER_MAX_LEVEL - k);
         // the new nodes of level k: all three at k = 1, else the odd multiples of ls
@@ -444,21 +492,13 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
             *lines += 1;
             l += step;
         }
-        if k < OUTER_MIN_LEVEL {
+        if k + 1 < OUTER_MIN_LEVEL {
             continue;
         }
+        // Ĉ: the largest of the interpolant's top TAIL coefficients
+        // c_m = (2/n) Σ'' v_j cos(π j m/n)
         let n = 1usize << k;
-        let mut q = [0.0f64; 2];
-        for (j, &w) in r.w[k].iter().enumerate() {
-            for c in 0..2 {
-                q[c] += w * vals[j * ls][c];
-            }
-        }
-        // the interpolant's top Chebyshev coefficients c_m = (2/n) Σ'' v_j cos(π j m/n);
-        // |∫(f − p_n)| ≤ (b − a)·max|f − p_n| ≤ (b − a)·2Σ_{m>n}|a_m|, the sum taken as the
-        // largest of the top TAIL computed coefficients (below the last level, the first row
-        // over tol settles that the level is not accepted)
-        let mut err = [0.0f64; 2];
+        let mut top = [0.0f64; 2];
         for row in tc[k].chunks_exact(n + 1) {
             let mut cm = [0.0f64; 2];
             for (j, &t) in row.iter().enumerate() {
@@ -467,12 +507,33 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
                 cm[1] += t * v[1];
             }
             for c in 0..2 {
-                err[c] = err[c].max(4.0 * half * cm[c].abs());
-            }
-            if !(err[0] <= tol && err[1] <= tol) && k < OUTER_MAX_LEVEL {
-                break;
+                top[c] = top[c].max(cm[c].abs());
             }
         }
+        if k < OUTER_MIN_LEVEL {
+            prev_top = top;
+            continue;
+        }
+        let mut q = [0.0f64; 2];
+        for (j, &w) in r.w[k].iter().enumerate() {
+            for c in 0..2 {
+                q[c] += w * vals[j * ls][c];
+            }
+        }
+        let mut err = [0.0f64; 2];
+        for c in 0..2 {
+            // the interpolation bound (b − a)·2Ĉ, and the model's tail (module doc, "Error")
+            let bound = 4.0 * half * top[c];
+            let rho = (prev_top[c] / top[c])
+                .powf(2.0 / n as f64)
+                .min(TAIL_MAX_DECAY);
+            err[c] = if rho > 1.0 {
+                bound.min(TAIL_SAFETY * half * top[c] * alias_weight(n, rho))
+            } else {
+                bound
+            };
+        }
+        prev_top = top;
         last = Estimate {
             value: [q[0] * half, q[1] * half],
             error: err,
@@ -569,23 +630,8 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             [l.k * jac * l.i0, l.k * jac * l.i5]
         };
         let mut e = Estimate::<2>::zero();
-        if t_max <= SHORT_PANEL {
-            e = integrate(
-                &mut f,
-                0.0,
-                t_max,
-                Tolerance {
-                    abs: outer_tol,
-                    initial_panels: 1,
-                    max_depth: 24,
-                    noise_floor: 0.0,
-                    max_evals: OUTER_MAX_LINES,
-                },
-            );
-        } else {
-            let mut lines = 0u64;
-            cc_tail(&mut f, (0.0, t_max), outer_tol, 12, &mut e, &mut lines);
-        }
+        let mut lines = 0u64;
+        cc_tail(&mut f, (0.0, t_max), outer_tol, 12, &mut e, &mut lines);
         for c in 0..2 {
             total.value[c] += e.value[c];
             total.error[c] += e.error[c];
