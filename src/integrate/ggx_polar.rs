@@ -612,7 +612,11 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
         }
         let t_max = (len / scale).asinh();
         let mut f = |x: f64| {
-            let sh = x.sinh();
+            // sinh and cosh from one expm1: with e = e^x − 1, sinh x = e(e + 2)/(2(e + 1))
+            // (no cancellation near 0) and cosh x = sinh x + 1/(e + 1)
+            let e = x.exp_m1();
+            let inv = 1.0 / (e + 1.0);
+            let sh = 0.5 * e * (e + 2.0) * inv;
             let off = sign * scale * sh;
             let theta_l = (origin + off).clamp(0.0, FRAC_PI_2);
             // θl − θv: exact from the offset on the panels from θv
@@ -621,7 +625,7 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             } else {
                 theta_l - theta_v
             };
-            let jac = scale * (1.0 + sh * sh).sqrt();
+            let jac = scale * (sh + inv);
             // an inner error δ on the line of weight k moves the result by k·α²·δ
             // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
             let l = t.line(theta_l, delta, tol / (2.0 * PI * a2), with_fc);
