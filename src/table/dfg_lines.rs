@@ -15,9 +15,9 @@
 //! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
 //! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α) (since in (√μ, ln α):
-//!   [`RoughnessVar::Ln`]): 3.8 M / 5.4 M (by
-//!   rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by rows
-//!   7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
+//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, see [`PAIR_BANDS`]): 3.8 M / 5.4 M
+//!   (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by
+//!   rows 7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
 //!   rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
 //!   3.4 M. One grid over every roughness cost 19.8 M / 53.3 M: near grazing the split sum of
 //!   a narrow lobe changes on the scale of α itself.
@@ -102,8 +102,13 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 /// lowest, rows. Measured as in the module doc, and on the pair at 512² (evaluations):
 /// bands from [1/256, 1/64, 1/16] 16.2 M, [1/256, 1/64] 14.4 M, [1/256] 17.3 M, [1/64]
 /// 15.9 M, [1/16] 21.3 M; at 128², [1/64] (the lower band holds 8 rows) 6.2 M, [1/16]
-/// 6.8 M, [1/256] 11.7 M.
-const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 64.0];
+/// 6.8 M, [1/256] 11.7 M. Since the polar kernel's outer estimate of 2026-11-30 (whole
+/// filament-dfg table, 128² / 512²): [1/256, 1/64] 2.38 M / 6.22 M, [1/256, 1/32]
+/// 2.22 M / 5.89 M (1/28: 2.18 / 6.03, 1/36: 2.19 / 6.01, 1/24: 2.26 / 6.48, 1/16:
+/// 4.03 / 6.90; [1/128, 1/32] and [1/512, 1/32] 6.54 M and 6.90 M at 512²; three bands
+/// [1/256, 1/64, x] for x = 1/4, 1/8, 1/16: 2.36–2.76 M / 6.75–7.02 M); karis-envbrdf
+/// 1.97 → 1.92 M at 128².
+const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 32.0];
 
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
 /// 24 rows do (at 512² the 32 rows of [1/256, 1/64) cost 7.1 M by rows, 5.6 M on a grid;
@@ -836,9 +841,9 @@ mod tests {
         }
     }
 
-    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/64, 112 rows) and the
-    /// other rows by rows; at 512² two pair grids (the bands from 1/256 and 1/64 up hold 32
-    /// and 448 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
+    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/32, r ≥ 0.1768: 105
+    /// rows) and the other rows by rows; at 512² two pair grids (the bands from 1/256 and
+    /// 1/32 up hold 59 and 421 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
     /// (128 narrow rows) their grazing texels by the strip and most of the rest on a grid.
     #[test]
     fn plan_follows_the_rules() {
@@ -849,7 +854,11 @@ mod tests {
             assert_eq!(p.pair_grids.len(), grids, "{n}²");
             let on_grids: usize = p.pair_grids.iter().map(|g| g.row.len()).sum();
             assert_eq!(on_grids + p.pair_rows.len(), n, "every row once");
-            assert_eq!(p.pair_grids.last().unwrap().row.len(), 7 * n / 8);
+            let widest = if n == 128 { 105 } else { 421 };
+            assert_eq!(p.pair_grids.last().unwrap().row.len(), widest, "{n}²");
+            if n == 512 {
+                assert_eq!(p.pair_grids[0].row.len(), 59);
+            }
             let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
             assert_eq!(wide.row.len(), 3 * n / 4);
             // from 64 narrow rows on (512²): the strip below μ = 0.01, and above it a grid
@@ -922,7 +931,7 @@ mod tests {
         );
     }
 
-    /// A 128 × 96 table, r from 0.02 to 1: the pair on a grid (85 rows with α ≥ 1/64), the
+    /// A 128 × 96 table, r from 0.02 to 1: the pair on a grid (the rows with α ≥ 1/32), the
     /// wide cloth lobes on a grid (73 rows with α ≥ 1/16), the other rows by rows; the columns
     /// checked include the grazing ones, the rows lie either side of both edges.
     #[test]
@@ -934,8 +943,8 @@ mod tests {
         check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 10, 11, 22, 23, 95]);
     }
 
-    /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/64, 1/16)
-    /// on a grid and the narrower rows by rows; the cloth channel by the strip below μ = 0.01
+    /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/256, 1/32)
+    /// on a grid, the rows below and above it (fewer than GRID_MIN_ROWS) by rows; the cloth channel by the strip below μ = 0.01
     /// (the first column), on a grid above it for α ≥ 1/1024, by rows below.
     #[test]
     fn narrow_lines_match_texel_values() {
