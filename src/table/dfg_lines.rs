@@ -54,13 +54,17 @@ use crate::integrate::{sheen_l, sheen_wide};
 use crate::lut::Axis;
 use rayon::prelude::*;
 
-/// Where the lines in x = √μ are cut first: μ = 0.01 (θv ≈ 89.4°). Closer to grazing the split
+/// Where the lines in x = √μ are cut first: μ = 1/64 (θv ≈ 89.1°). Closer to grazing the split
 /// sum of a narrow lobe changes on the scale of μ itself (the masking layer at the horizon),
 /// which costs many nodes, and those nodes are the most expensive quadratures of the row:
-/// the few texels there (one of a 128-texel row, five of 512) are computed directly (as
+/// the few texels there (two of a 128-texel row, eight of 512) are computed directly (as
 /// columns, on a grid). Measured on karis-envbrdf's rows: 10.3 → 6.5 M evaluations at 128²,
-/// 79 → 42 M at 512² (cuts at μ = 0.0025 … 0.0625 tried; 0.01 is best at both sizes).
-const GRAZING_BREAK: f64 = 0.1;
+/// 79 → 42 M at 512² (cuts at μ = 0.0025 … 0.0625 tried; 0.01 was best at both sizes). With
+/// the polar kernel's outer estimate of 2026-11-30 (whole filament-dfg table, 128² / 512²,
+/// x = 0.1: 2.22 M / 5.89 M): x = 0.11 2.17 / 5.92, 0.12 2.22 / 4.95, 0.125 2.13 / 5.18,
+/// 0.13 2.11 / 5.22, 0.135 2.10 / 5.00, 0.14 2.16 / 7.52, 0.15 2.13 / 7.57, 0.2 2.23 / 10.2
+/// (where the intervals' nodes fall makes it bumpy; 0.125 is inside the good stretch).
+const GRAZING_BREAK: f64 = 0.125;
 
 /// A second cut of the split sum's rows (not of its grids), in x = √μ: μ ≈ 0.073. A
 /// narrow lobe's row changes faster below it (the masking layer at the horizon, of width
