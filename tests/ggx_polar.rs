@@ -120,12 +120,7 @@ fn table_corners_converge_and_match_tight_adaptive() {
             let mut f = Vec::new();
             match ggx_split_sum(mu, alpha, Smith::HeightCorrelated, LIB_TOL) {
                 Ok(e) => {
-                    let s = Specular {
-                        ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
-                        masking: Masking::SmithHeightCorrelated,
-                        fresnel: Fresnel::None,
-                    };
-                    let (r, re, _) = split_sum_adaptive(&s, mu, LIB_TOL * 1e-2);
+                    let (r, re, _) = split_sum_adaptive(&ggx_hc(alpha), mu, LIB_TOL * 1e-2);
                     for c in 0..2 {
                         let d = (e.value[c] - r[c]).abs();
                         if d > REQ || d > e.error[c] + re[c] + round(r[c]) {
@@ -195,37 +190,14 @@ fn dense_grid_within_estimates_against_tight_adaptive() {
     let failures: Vec<String> = pts
         .par_iter()
         .flat_map_iter(|&(mu, alpha)| {
-            let s = Specular {
-                ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
-                masking: Masking::SmithHeightCorrelated,
-                fresnel: Fresnel::None,
-            };
-            let (r, re) = if mu == 1.0 {
+            let reference = if mu == 1.0 {
                 normal_view_split_sum(alpha)
             } else {
-                let (r, re, _) = split_sum_adaptive(&s, mu, 1e-12);
+                let (r, re, _) = split_sum_adaptive(&ggx_hc(alpha), mu, 1e-12);
                 (r, re)
             };
-            let mut f = Vec::new();
-            for tol in tols {
-                match ggx_split_sum(mu, alpha, Smith::HeightCorrelated, tol) {
-                    Ok(e) => {
-                        for c in 0..2 {
-                            let d = (e.value[c] - r[c]).abs();
-                            if d > e.error[c] + re[c] + round(r[c]) || e.error[c] > tol {
-                                f.push(format!(
-                                    "tol={tol:e} mu={mu:e} alpha={alpha:e} ch{c}: kernel {} (est {:e}) adaptive {} (est {:e}) diff {d:e}",
-                                    e.value[c], e.error[c], r[c], re[c]
-                                ));
-                            }
-                        }
-                    }
-                    Err(m) => f.push(format!(
-                        "tol={tol:e} mu={mu:e} alpha={alpha:e}: declined ({m} evaluations)"
-                    )),
-                }
-            }
-            f
+            tols.into_iter()
+                .flat_map(move |tol| within_estimates(mu, alpha, tol, reference))
         })
         .collect();
     assert!(
@@ -234,6 +206,39 @@ fn dense_grid_within_estimates_against_tight_adaptive() {
         failures.len(),
         failures.join("\n")
     );
+}
+
+/// GGX with height-correlated Smith masking and F = 1, the model of the kernel's split sum.
+fn ggx_hc(alpha: f64) -> Specular {
+    Specular {
+        ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
+        masking: Masking::SmithHeightCorrelated,
+        fresnel: Fresnel::None,
+    }
+}
+
+/// The kernel at (μ, α) and `tol` against a reference (values, estimates): a failure where
+/// it declines, where it differs from the reference by more than both estimates plus
+/// `round`, or where its own estimate exceeds `tol`.
+fn within_estimates(mu: f64, alpha: f64, tol: f64, (r, re): ([f64; 2], [f64; 2])) -> Vec<String> {
+    let mut f = Vec::new();
+    match ggx_split_sum(mu, alpha, Smith::HeightCorrelated, tol) {
+        Ok(e) => {
+            for c in 0..2 {
+                let d = (e.value[c] - r[c]).abs();
+                if d > e.error[c] + re[c] + round(r[c]) || e.error[c] > tol {
+                    f.push(format!(
+                        "tol={tol:e} mu={mu:e} alpha={alpha:e} ch{c}: kernel {} (est {:e}) reference {} (est {:e}) diff {d:e}",
+                        e.value[c], e.error[c], r[c], re[c]
+                    ));
+                }
+            }
+        }
+        Err(m) => f.push(format!(
+            "tol={tol:e} mu={mu:e} alpha={alpha:e}: declined ({m} evaluations)"
+        )),
+    }
+    f
 }
 
 /// Narrow lobes at tight tolerances (α = 1e-6 … 1e-5, tol = 1e-10): the integrand's values
@@ -254,28 +259,8 @@ fn narrow_lobes_converge_at_tight_tolerances() {
     let failures: Vec<String> = pts
         .par_iter()
         .flat_map_iter(|&(mu, alpha)| {
-            let s = Specular {
-                ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
-                masking: Masking::SmithHeightCorrelated,
-                fresnel: Fresnel::None,
-            };
-            let mut f = Vec::new();
-            match ggx_split_sum(mu, alpha, Smith::HeightCorrelated, tol) {
-                Ok(e) => {
-                    let (r, re, _) = split_sum_adaptive(&s, mu, 1e-12);
-                    for c in 0..2 {
-                        let d = (e.value[c] - r[c]).abs();
-                        if d > e.error[c] + re[c] + round(r[c]) || e.error[c] > tol {
-                            f.push(format!(
-                                "mu={mu:e} alpha={alpha:e} ch{c}: kernel {} (est {:e}) adaptive {} (est {:e}) diff {d:e}",
-                                e.value[c], e.error[c], r[c], re[c]
-                            ));
-                        }
-                    }
-                }
-                Err(m) => f.push(format!("mu={mu:e} alpha={alpha:e}: declined ({m} evaluations)")),
-            }
-            f
+            let (r, re, _) = split_sum_adaptive(&ggx_hc(alpha), mu, 1e-12);
+            within_estimates(mu, alpha, tol, (r, re))
         })
         .collect();
     assert!(
