@@ -115,17 +115,151 @@ const MOBIUS_BELOW: f64 = 0.2;
 const MAX_LOG2: usize = 6;
 const NTRAP: usize = 1 << MAX_LOG2;
 
-/// `1 + cos(kπ/64) = 2 cos²(kπ/128)`, k = 0..=64 (accurate near φ = π).
-fn one_plus_cos() -> &'static [f64; NTRAP + 1] {
-    static T: OnceLock<[f64; NTRAP + 1]> = OnceLock::new();
+/// Where each level's new trapezoid nodes start in [`NodeTables`]' order: level 0 is the
+/// two ends (N = 1), level l ≥ 1 the 2^(l−1) midpoints that N = 2^l adds.
+const LEVEL_START: [usize; MAX_LOG2 + 2] = {
+    let mut t = [0; MAX_LOG2 + 2];
+    t[1] = 2;
+    let mut l = 1;
+    while l <= MAX_LOG2 {
+        t[l + 1] = t[l] + (1 << (l - 1));
+        l += 1;
+    }
+    t
+};
+
+/// The trapezoid nodes ϑ = kπ/64 (k = 0..=64) in the order of their levels — k = 0, 64;
+/// 32; 16, 48; 8, 24, 40, 56; … (increasing within a level, the order in which the sums
+/// add them) — as `1 + cos(kπ/64) = 2 cos²(kπ/128)` (accurate near φ = π) and the same at
+/// 64 − k, so that each level's nodes lie contiguous for [`Nodes::eval`].
+struct NodeTables {
+    opc: [f64; NTRAP + 1],
+    opc_rev: [f64; NTRAP + 1],
+}
+
+fn node_tables() -> &'static NodeTables {
+    static T: OnceLock<NodeTables> = OnceLock::new();
     T.get_or_init(|| {
-        let mut t = [0.0; NTRAP + 1];
-        for (k, v) in t.iter_mut().enumerate() {
+        let one_plus_cos = |k: usize| {
             let c = (k as f64 * PI / (2 * NTRAP) as f64).cos();
-            *v = 2.0 * c * c;
+            2.0 * c * c
+        };
+        let mut t = NodeTables {
+            opc: [0.0; NTRAP + 1],
+            opc_rev: [0.0; NTRAP + 1],
+        };
+        let mut i = 0;
+        let mut put = |k: usize| {
+            t.opc[i] = one_plus_cos(k);
+            t.opc_rev[i] = one_plus_cos(NTRAP - k);
+            i += 1;
+        };
+        put(0);
+        put(NTRAP);
+        for l in 1..=MAX_LOG2 {
+            let stride = NTRAP >> (l - 1);
+            for k in (stride / 2..NTRAP).step_by(stride) {
+                put(k);
+            }
         }
         t
     })
+}
+
+/// The integrand of one line's azimuthal rule, `R(s) ds/dϑ` at the trapezoid nodes
+/// (times the Möbius map's Jacobian where it applies): see the module doc and
+/// [`Texel::line`].
+struct Nodes {
+    /// `P₂` as coefficients of s⁰..s⁷.
+    p2: [f64; 8],
+    s0: f64,
+    s_min: f64,
+    s_max: f64,
+    /// `(s_max − s_min)/2`.
+    h: f64,
+    /// The Möbius map's ε and ε² (ε = 1: no map).
+    eps: f64,
+    e2: f64,
+}
+
+impl Nodes {
+    /// The values at the nodes `range` of [`NodeTables`]' order, into `out[range]`, with
+    /// the Möbius map or without. On x86-64 with AVX2 the same code is compiled for it
+    /// (four nodes per instruction): only additions, multiplications, divisions and square
+    /// roots, each correctly rounded and none fused, in the same order, so both give the
+    /// same bits.
+    fn eval(&self, mobius: bool, range: std::ops::Range<usize>, out: &mut [f64; NTRAP + 1]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked above), all that `eval_avx2` requires.
+            unsafe { self.eval_avx2(mobius, range, out) };
+            return;
+        }
+        self.eval_portable(mobius, range, out);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn eval_avx2(
+        &self,
+        mobius: bool,
+        range: std::ops::Range<usize>,
+        out: &mut [f64; NTRAP + 1],
+    ) {
+        self.eval_portable(mobius, range, out);
+    }
+
+    #[inline(always)]
+    fn eval_portable(
+        &self,
+        mobius: bool,
+        range: std::ops::Range<usize>,
+        out: &mut [f64; NTRAP + 1],
+    ) {
+        let t = node_tables();
+        let out = &mut out[range.clone()];
+        if mobius {
+            let (opc, opc_rev) = (&t.opc[range.clone()], &t.opc_rev[range]);
+            for ((o, &a), &b) in out.iter_mut().zip(opc).zip(opc_rev) {
+                *o = self.at_mobius(a, b);
+            }
+        } else {
+            for (o, &a) in out.iter_mut().zip(&t.opc[range]) {
+                *o = self.at(a);
+            }
+        }
+    }
+
+    /// At ϑ with `opc` = 1 + cos ϑ: u = w, 1 − cos u = 1 + cos ϑ.
+    #[inline(always)]
+    fn at(&self, opc: f64) -> f64 {
+        self.value(self.s_min + self.h * opc, 1.0)
+    }
+
+    /// At w with `opc` = 1 + cos w and `opc_rev` = 1 + cos(π − w): cos²(w/2) = opc/2,
+    /// sin²(w/2) = opc_rev/2, and with den = cos²(w/2) + ε² sin²(w/2),
+    /// 1 − cos u = 2ε² sin²(w/2)/den and du/dw = ε/den.
+    #[inline(always)]
+    fn at_mobius(&self, opc: f64, opc_rev: f64) -> f64 {
+        let (cw, sw) = (0.5 * opc, 0.5 * opc_rev);
+        let den = 1.0 / (cw + self.e2 * sw);
+        self.value(
+            self.s_min + self.h * 2.0 * self.e2 * sw * den,
+            self.eps * den,
+        )
+    }
+
+    /// `jac · R(s) · 2s/√((s + s_min)(s + s_max))`, R = P₂(s)/(s + s₀)².
+    #[inline(always)]
+    fn value(&self, sq: f64, jac: f64) -> f64 {
+        let p2 = &self.p2;
+        let mut p = p2[7];
+        for c in (0..7).rev() {
+            p = p * sq + p2[c];
+        }
+        let d = sq + self.s0;
+        jac * p * 2.0 * sq / (d * d * ((sq + self.s_min) * (sq + self.s_max)).sqrt())
+    }
 }
 
 /// `G(s) = s⁴ (1 − s/2)⁵ = z² Fc` as coefficients of s⁰..s⁹.
@@ -187,7 +321,15 @@ impl Texel {
     /// The azimuthal integrals at `theta_l` = θv + `delta` (both given: near the lobe's
     /// peak the offset carries digits that θl has lost); `tol_k` is the inner tolerance
     /// times the line's weight k (the inner rules are asked for `tol_k / k`).
-    fn line(&self, theta_l: f64, delta: f64, tol_k: f64, with_fc: bool) -> Line {
+    /// `vals` is scratch space for the azimuthal rule's node values.
+    fn line(
+        &self,
+        theta_l: f64,
+        delta: f64,
+        tol_k: f64,
+        with_fc: bool,
+        vals: &mut [f64; NTRAP + 1],
+    ) -> Line {
         let (hs, hc) = (0.5 * theta_l).sin_cos();
         let sin_l = 2.0 * hs * hc;
         let mu_l = (hc - hs) * (hc + hs);
@@ -243,7 +385,6 @@ impl Texel {
         }
         // in s = √z = 2 v·h ∈ [s_min, s_max] (see the module doc), s = s_min + h (1 + cos ϑ)
         let h = 0.5 * (s_max - s_min).max(0.0);
-        let opc = one_plus_cos();
         // Möbius map of the period, u = π − ϑ, tan(u/2) = ε tan(w/2) (trapezoid nodes in w):
         // every singularity sits on the imaginary u axis, at u = i b_σ with
         // tanh(b_σ/2) = √(y_σ/(2 + y_σ)), y_σ = (s_min + σ)/h, σ ∈ {s₀, s_min, s_max}; the map
@@ -264,54 +405,40 @@ impl Texel {
             1.0
         };
         let e2 = eps * eps;
-        let mobius = eps < 1.0;
-        let r_at = |k: usize| {
-            let (sq, jac) = if mobius {
-                // cos²(w/2) = (1 + cos w)/2, sin²(w/2) = (1 + cos(π − w))/2 at w = kπ/64;
-                // 1 − cos u = 2ε² sin²(w/2)/den, du/dw = ε/den, den = cos²(w/2) + ε² sin²(w/2)
-                let (cw, sw) = (0.5 * opc[k], 0.5 * opc[NTRAP - k]);
-                let den = 1.0 / (cw + e2 * sw);
-                (s_min + h * 2.0 * e2 * sw * den, eps * den)
-            } else {
-                // u = w: 1 − cos u = 1 + cos ϑ at ϑ = kπ/64 (the nodes in reverse order)
-                (s_min + h * opc[k], 1.0)
-            };
-            let mut p = p2[7];
-            for c in (0..7).rev() {
-                p = p * sq + p2[c];
-            }
-            let d = sq + s0;
-            jac * p * 2.0 * sq / (d * d * ((sq + s_min) * (sq + s_max)).sqrt())
+        let nodes = Nodes {
+            p2,
+            s0,
+            s_min,
+            s_max,
+            h,
+            eps,
+            e2,
         };
+        let mobius = eps < 1.0;
         // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
         // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
         // coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|
-        let mut stride = NTRAP;
-        let (r_0, r_n) = (r_at(0), r_at(NTRAP));
-        let mut sum = 0.5 * (r_0 + r_n);
+        // the nodes in the order of their levels (`NODE_ORDER`), each level's computed at once
+        nodes.eval(mobius, 0..LEVEL_START[3], vals);
+        let mut sum = 0.5 * (vals[0] + vals[1]);
         // max|R| over the 5 nodes of T_4 (for the guard)
-        let mut fmax = r_0.abs().max(r_n.abs());
+        let mut fmax = vals[0].abs().max(vals[1].abs());
+        for v in &vals[2..LEVEL_START[3]] {
+            fmax = fmax.max(v.abs());
+        }
         let mut evals = 2u64;
         // T_{N/4}, T_{N/2}
         let mut t_prev = [0.0f64, sum];
-        let mut level = 0;
-        while stride > 1 {
-            let half = stride / 2;
-            if level < 2 {
-                for k in (half..NTRAP).step_by(stride) {
-                    let v = r_at(k);
-                    fmax = fmax.max(v.abs());
-                    sum += v;
-                }
-            } else {
-                for k in (half..NTRAP).step_by(stride) {
-                    sum += r_at(k);
-                }
+        for level in 1..=MAX_LOG2 {
+            let new = LEVEL_START[level]..LEVEL_START[level + 1];
+            if level > 2 {
+                nodes.eval(mobius, new.clone(), vals);
             }
-            evals += (NTRAP / stride) as u64;
-            stride = half;
-            level += 1;
-            let cur = sum * stride as f64 / NTRAP as f64;
+            for v in &vals[new.clone()] {
+                sum += v;
+            }
+            evals += new.len() as u64;
+            let cur = sum / (1usize << level) as f64;
             let mut d = (cur - t_prev[1]).abs();
             if level == 2 {
                 let d2 = (t_prev[1] - t_prev[0]).abs();
@@ -428,29 +555,51 @@ const TAIL_MAX_DECAY: f64 = 2.0;
 /// Clenshaw–Curtis rule with n + 1 nodes (module doc, "Error"): the quadrature error of a
 /// tail `|a_{n+j}| = ρ^{−j}` on [−1, 1]. Summed until the rest, whose terms are each at most
 /// 4 (|I(T_j)| ≤ 2), is below 1e-3 of the sum (or from m = 32n on, for ρ near 1), and
-/// that rest's bound added; `rho` > 1.
+/// that rest's bound added; `rho` > 1, n a power of two from 2^[`OUTER_MIN_LEVEL`] to
+/// 2^[`OUTER_MAX_LEVEL`]. The differences come from [`alias_diffs`]: this runs once per
+/// panel, level and channel, up to 31n terms.
 fn alias_weight(n: usize, rho: f64) -> f64 {
-    let integral = |j: usize| {
-        if j % 2 == 1 {
-            0.0
-        } else {
-            2.0 / (1.0 - (j * j) as f64)
-        }
-    };
     let q = 1.0 / rho;
     let rest = |f: f64| 4.0 * f * q / (1.0 - q);
     let (mut f, mut w) = (1.0, 0.0);
-    let mut m = n;
-    loop {
-        m += 1;
+    for (j, &diff) in alias_diffs(n).iter().enumerate() {
+        let m = n + 1 + j;
         f *= q;
-        let r = m % (2 * n);
-        let alias = if r <= n { r } else { 2 * n - r };
-        w += f * (integral(m) - integral(alias)).abs();
-        if m > 2 * n && (rest(f) <= 1e-3 * w || m >= 32 * n) {
-            return w + rest(f);
+        w += f * diff;
+        if m > 2 * n && rest(f) <= 1e-3 * w {
+            break;
         }
     }
+    w + rest(f)
+}
+
+/// `|I(T_m) − I(T_{m'})|` for m = n + 1 ..= 32n (m' the alias of m under n + 1 nodes,
+/// `I(T_j) = 2/(1 − j²)` for even j, 0 for odd), for n = 2^k, k = [`OUTER_MIN_LEVEL`]
+/// ..= [`OUTER_MAX_LEVEL`].
+fn alias_diffs(n: usize) -> &'static [f64] {
+    static T: OnceLock<Vec<Vec<f64>>> = OnceLock::new();
+    let t = T.get_or_init(|| {
+        let integral = |j: usize| {
+            if j % 2 == 1 {
+                0.0
+            } else {
+                2.0 / (1.0 - (j * j) as f64)
+            }
+        };
+        (OUTER_MIN_LEVEL..=OUTER_MAX_LEVEL)
+            .map(|k| {
+                let n = 1usize << k;
+                (n + 1..=32 * n)
+                    .map(|m| {
+                        let r = m % (2 * n);
+                        let alias = if r <= n { r } else { 2 * n - r };
+                        (integral(m) - integral(alias)).abs()
+                    })
+                    .collect()
+            })
+            .collect()
+    });
+    &t[n.trailing_zeros() as usize - OUTER_MIN_LEVEL]
 }
 
 /// First and last Clenshaw–Curtis level of the outer rule: 2^3 + 1 = 9 to 2^6 + 1 = 65 nodes.
@@ -602,6 +751,7 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
     ];
     let mut inner_err = 0.0f64;
     let mut evals = 0u64;
+    let mut scratch = [0.0f64; NTRAP + 1];
     let mut total = Estimate::<2>::zero();
     // each panel's outer rule within tol/8 per channel (three panels, two channels summed
     // into channel 0, and the inner rules' tol/4: at most tol in all)
@@ -628,7 +778,7 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             let jac = scale * (sh + inv);
             // an inner error δ on the line of weight k moves the result by k·α²·δ
             // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
-            let l = t.line(theta_l, delta, tol / (2.0 * PI * a2), with_fc);
+            let l = t.line(theta_l, delta, tol / (2.0 * PI * a2), with_fc, &mut scratch);
             inner_err = inner_err.max(l.k * a2 * l.err);
             evals += l.evals;
             [l.k * jac * l.i0, l.k * jac * l.i5]
@@ -690,6 +840,51 @@ mod tests {
         }
     }
 
+    /// The azimuthal rule's node values are the same bits through the AVX2 path as through
+    /// the portable one (each operation correctly rounded and none fused), with and without
+    /// the Möbius map, on the lines of several texels; and the nodes in level order are the
+    /// nodes kπ/64, each once.
+    #[test]
+    fn node_values_are_the_same_bits_on_every_path() {
+        let t = node_tables();
+        let mut ks: Vec<usize> = (0..=NTRAP)
+            .map(|i| {
+                let k = (t.opc[i] / 2.0).sqrt().acos() * (2 * NTRAP) as f64 / PI;
+                k.round() as usize
+            })
+            .collect();
+        ks.sort_unstable();
+        assert_eq!(ks, (0..=NTRAP).collect::<Vec<_>>());
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            let mut checked = 0;
+            for &(mu, alpha) in &[(0.7, 0.3), (0.02, 0.05), (0.95, 0.6), (0.05, 0.9)] {
+                for &eps in &[1.0, 0.3, 0.01] {
+                    let s0 = 1.3 * mu + 0.1 * alpha;
+                    let nodes = Nodes {
+                        p2: [0.7, -1.1, 0.3, 2.0 * mu, -alpha, 0.02, -0.31, 0.03125],
+                        s0,
+                        s_min: 0.05 * mu,
+                        s_max: 1.9 - alpha,
+                        h: 0.5 * (1.9 - alpha - 0.05 * mu),
+                        eps,
+                        e2: eps * eps,
+                    };
+                    let (mut a, mut b) = ([0.0; NTRAP + 1], [0.0; NTRAP + 1]);
+                    nodes.eval_portable(eps < 1.0, 0..NTRAP + 1, &mut a);
+                    // SAFETY: the CPU has AVX2 (checked above).
+                    unsafe { nodes.eval_avx2(eps < 1.0, 0..NTRAP + 1, &mut b) };
+                    for i in 0..=NTRAP {
+                        assert_eq!(a[i].to_bits(), b[i].to_bits(), "node {i}");
+                        assert!(a[i].is_finite());
+                    }
+                    checked += 1;
+                }
+            }
+            assert_eq!(checked, 12);
+        }
+    }
+
     /// The closed-form I₀ equals a brute-force φ integral of GGX's D, and I₅ (subtracted
     /// trapezoid, and the fallback rule in ψ) equals one of D·Fc: the rational form of D,
     /// the pole subtraction and the substitutions are exact identities, so only the brute-force rule's error (composite Simpson with 2e5
@@ -728,7 +923,13 @@ mod tests {
                     s5 += w * d * (1.0 - vh).powi(5);
                 }
                 let h = PI / n as f64 / 3.0;
-                let l = t.line(theta_l, theta_l - t.theta_v, 1e-13 * t.g_fac(ml) * sl, true);
+                let l = t.line(
+                    theta_l,
+                    theta_l - t.theta_v,
+                    1e-13 * t.g_fac(ml) * sl,
+                    true,
+                    &mut [0.0; NTRAP + 1],
+                );
                 let (b0, b5) = (s0 * h, s5 * h);
                 assert!((l.i0 - b0).abs() <= 1e-10 * b0, "I0 {} vs {b0}", l.i0);
                 assert!((l.i5 - b5).abs() <= 1e-10 * b0, "I5 {} vs {b5}", l.i5);
