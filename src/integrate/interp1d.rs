@@ -242,12 +242,13 @@ where
                 .collect();
             let (mut pass, mut floor_all) = (true, 0.0f64);
             let mut fit = Vec::with_capacity(nc);
-            let lobatto = Lobatto::new(n);
+            // every channel's coefficients in one pass (k-major: `all[k·nc + c]`)
+            let node_major: Vec<f64> = vals.iter().flat_map(|s| s.value.iter().copied()).collect();
+            let all = Lobatto::new(n).coefficients_many(&node_major, nc);
             for c in 0..nc {
-                let v: Vec<f64> = vals.iter().map(|s| s.value[c]).collect();
                 let delta = vals.iter().map(|s| s.error[c]).fold(0.0, f64::max);
-                let scale = v.iter().map(|x| x.abs()).fold(0.0, f64::max);
-                let co = lobatto.coefficients(&v);
+                let scale = vals.iter().map(|s| s.value[c].abs()).fold(0.0, f64::max);
+                let co: Vec<f64> = all.iter().skip(c).step_by(nc).copied().collect();
                 let tail = 2.0 * (co[n].abs() + co[n - 1].abs());
                 let floor = lebesgue(n) * delta + ROUNDING * scale;
                 let err = tail + floor;
