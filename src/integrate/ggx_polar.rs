@@ -556,9 +556,29 @@ const TAIL_MAX_DECAY: f64 = 2.0;
 /// tail `|a_{n+j}| = ρ^{−j}` on [−1, 1]. Summed until the rest, whose terms are each at most
 /// 4 (|I(T_j)| ≤ 2), is below 1e-3 of the sum (or from m = 32n on, for ρ near 1), and
 /// that rest's bound added; `rho` > 1, n a power of two from 2^[`OUTER_MIN_LEVEL`] to
-/// 2^[`OUTER_MAX_LEVEL`]. The differences come from [`alias_diffs`]: this runs once per
-/// panel, level and channel, up to 31n terms.
-fn alias_weight(n: usize, rho: f64) -> f64 {
+/// 2^[`OUTER_MAX_LEVEL`]. Returns early, with the partial sum, once that reaches `enough`
+/// (where the caller's estimate is capped anyway: for ρ near 1 the full sum takes 31n
+/// terms). The differences come from [`alias_diffs`]: this runs once per panel, level and
+/// channel.
+fn alias_weight(n: usize, rho: f64, enough: f64) -> f64 {
+    // the most common ρ (the decay model's cap) from a table: the same sum, so the same
+    // bits, wherever the early return would not have cut it short
+    if rho == TAIL_MAX_DECAY {
+        static AT_MAX: OnceLock<Vec<f64>> = OnceLock::new();
+        let at_max = AT_MAX.get_or_init(|| {
+            (OUTER_MIN_LEVEL..=OUTER_MAX_LEVEL)
+                .map(|k| alias_weight_sum(1 << k, TAIL_MAX_DECAY, f64::INFINITY))
+                .collect()
+        });
+        let w = at_max[n.trailing_zeros() as usize - OUTER_MIN_LEVEL];
+        if w < enough {
+            return w;
+        }
+    }
+    alias_weight_sum(n, rho, enough)
+}
+
+fn alias_weight_sum(n: usize, rho: f64, enough: f64) -> f64 {
     let q = 1.0 / rho;
     let rest = |f: f64| 4.0 * f * q / (1.0 - q);
     let (mut f, mut w) = (1.0, 0.0);
@@ -566,6 +586,9 @@ fn alias_weight(n: usize, rho: f64) -> f64 {
         let m = n + 1 + j;
         f *= q;
         w += f * diff;
+        if w >= enough {
+            return w;
+        }
         if m > 2 * n && rest(f) <= 1e-3 * w {
             break;
         }
@@ -647,16 +670,24 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
         // Ĉ: the largest of the interpolant's top TAIL coefficients
         // c_m = (2/n) Σ'' v_j cos(π j m/n)
         let n = 1usize << k;
-        let mut top = [0.0f64; 2];
-        for row in tc[k].chunks_exact(n + 1) {
-            let mut cm = [0.0f64; 2];
-            for (j, &t) in row.iter().enumerate() {
+        // (node by node, each coefficient's sum in the order of the nodes: eight independent
+        // sums rather than two at a time)
+        let rows = &tc[k];
+        let mut cm = [[0.0f64; 2]; TAIL];
+        if !rows.is_empty() {
+            for j in 0..=n {
                 let v = vals[j * ls];
-                cm[0] += t * v[0];
-                cm[1] += t * v[1];
+                for (m, c) in cm.iter_mut().enumerate() {
+                    let t = rows[m * (n + 1) + j];
+                    c[0] += t * v[0];
+                    c[1] += t * v[1];
+                }
             }
-            for c in 0..2 {
-                top[c] = top[c].max(cm[c].abs());
+        }
+        let mut top = [0.0f64; 2];
+        for c in &cm {
+            for ch in 0..2 {
+                top[ch] = top[ch].max(c[ch].abs());
             }
         }
         if k < OUTER_MIN_LEVEL {
@@ -676,8 +707,10 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
             let rho = (prev_top[c] / top[c])
                 .powf(2.0 / n as f64)
                 .min(TAIL_MAX_DECAY);
+            // (a weight ≥ 1.025·4/TAIL_SAFETY puts the model above the bound)
             err[c] = if rho > 1.0 {
-                bound.min(TAIL_SAFETY * half * top[c] * alias_weight(n, rho))
+                let w = alias_weight(n, rho, 4.1 / TAIL_SAFETY);
+                bound.min(TAIL_SAFETY * half * top[c] * w)
             } else {
                 bound
             };
