@@ -114,6 +114,15 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 /// 1.97 → 1.92 M at 128².
 const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 32.0];
 
+/// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
+/// ([`interp1d::line_batched_from`]). The band from α = 1/32 up needs degree ~20–24 in
+/// ln α at most view cosines (its Chebyshev coefficients fall below the column tolerance,
+/// ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs 9 + 8 + 16 = 33 nodes, from
+/// 24 it costs 25. Measured (cachegrind, one thread, 2026-11-30): filament-dfg 128²
+/// 305 → 288 M instructions, 512² 807 → 795 M, karis-envbrdf 227 → 212 M; from 12 (and 6)
+/// 292 M at 128²; the lower band from 24, 12 or 6 cost more at 512² (826, 815, 812 M).
+const PAIR_FIRST_DEGREE: [usize; 2] = [interp1d::MIN_DEG, 24];
+
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
 /// 24 rows do (at 512² the 32 rows of [1/256, 1/64) cost 7.1 M by rows, 5.6 M on a grid;
 /// at 128², when it was a band of its own, the 16 rows of [1/64, 1/16) 1.2 M by rows,
@@ -195,6 +204,8 @@ struct RoughnessLine {
     alphas: Vec<f64>,
     /// The axis index of the k-th smallest α.
     row: Vec<usize>,
+    /// The degree its interpolation starts at ([`interp1d::line_batched_from`]).
+    first_degree: usize,
 }
 
 impl RoughnessLine {
@@ -216,6 +227,7 @@ impl RoughnessLine {
             ys,
             alphas,
             row,
+            first_degree: interp1d::MIN_DEG,
         })
     }
 }
@@ -250,7 +262,8 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
         if rows.len() < GRID_MIN_ROWS || nx < GRID_MIN_COLUMNS {
             continue;
         }
-        if let Some(l) = RoughnessLine::new(ay, RoughnessVar::Ln, rows) {
+        if let Some(mut l) = RoughnessLine::new(ay, RoughnessVar::Ln, rows) {
+            l.first_degree = PAIR_FIRST_DEGREE[k];
             for &j in &l.row {
                 on_grid[j] = true;
             }
@@ -332,18 +345,27 @@ impl Ctx {
     /// row. Its texels computed directly are [`Ctx::pair`]'s.
     fn pair_column(&self, rl: &RoughnessLine, mu: f64, tol: f64, stop: Stop) -> LineValues {
         let view = View::new(mu);
-        interp1d::line_with_node_tol(
+        interp1d::line_batched_from(
+            rl.first_degree,
             &rl.ys,
             &[],
             2,
             tol,
             tol * COLUMN_NODE_TOL_FRACTION,
-            |y, t| {
-                unless_stopped(stop, 2, || {
-                    as_sample(self.pair_at(rl.var.alpha(y), &view, t))
-                })
+            |ys, t| {
+                ys.iter()
+                    .map(|&y| {
+                        unless_stopped(stop, 2, || {
+                            as_sample(self.pair_at(rl.var.alpha(y), &view, t))
+                        })
+                    })
+                    .collect()
             },
-            |k, t| unless_stopped(stop, 2, || as_sample(self.pair(rl.row[k], &view, t))),
+            |ks, t| {
+                ks.iter()
+                    .map(|&k| unless_stopped(stop, 2, || as_sample(self.pair(rl.row[k], &view, t))))
+                    .collect()
+            },
         )
     }
 
