@@ -123,6 +123,15 @@ const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 32.0];
 /// 292 M at 128²; the lower band from 24, 12 or 6 cost more at 512² (826, 815, 812 M).
 const PAIR_FIRST_DEGREE: [usize; 2] = [interp1d::MIN_DEG, 24];
 
+/// Split-sum rows of at least this α start their interpolation at degree
+/// [`PAIR_ROW_FIRST_DEGREE`]: on [`ROW_BREAK`], 1] they need degree ~20–32 in √μ (from 8:
+/// 9 + 8 + 16 nodes), narrower lobes ≤ 16. Measured (cachegrind, one thread, 2026-11-30):
+/// filament-dfg 128² 288 → 277 M instructions, karis-envbrdf 212 → 203 M; from α = 1/128
+/// 279 M and 205 M, from 1/256 281 M and 208 M, every row from 12 286 M and 209 M. (Only
+/// tables below ~200 rows have such rows: larger ones put [1/256, 1/32) on a grid.)
+const PAIR_ROW_WIDE_FROM: f64 = 0.01;
+const PAIR_ROW_FIRST_DEGREE: usize = 24;
+
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
 /// 24 rows do (at 512² the 32 rows of [1/256, 1/64) cost 7.1 M by rows, 5.6 M on a grid;
 /// at 128², when it was a band of its own, the 16 rows of [1/64, 1/16) 1.2 M by rows,
@@ -439,7 +448,12 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
     let ax = &ctx.axes[0];
     let at =
         |mu: f64, t: f64| unless_stopped(stop, 2, || as_sample(ctx.pair(j, &View::new(mu), t)));
-    interp1d::line_batched(
+    let first = match ctx.axes[1].alpha(j) {
+        Some(a) if a >= PAIR_ROW_WIDE_FROM => PAIR_ROW_FIRST_DEGREE,
+        _ => interp1d::MIN_DEG,
+    };
+    interp1d::line_batched_from(
+        first,
         xs,
         &[GRAZING_BREAK, ROW_BREAK],
         2,
