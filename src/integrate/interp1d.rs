@@ -41,7 +41,7 @@
 use super::chebyshev::{chebyshev_polynomials, clenshaw, Lobatto};
 
 /// What this module does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "adaptive Chebyshev interpolation along a line of texels (src/integrate/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested), intervals halved where degree 64 does not pass; accepted where 2(|c_(n-1)| + |c_n|) + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4 (recomputed 8x and 64x tighter where their errors use up half the tolerance); intervals with no more texels than nodes computed texel by texel.";
+pub const METHOD: &str = "adaptive Chebyshev interpolation along a line of texels (src/integrate/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested; the lines whose functions need ~24 start there: 24, 48), intervals halved where the last degree does not pass; accepted where 2(|c_(n-1)| + |c_n|) + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4 (recomputed 8x and 64x tighter where their errors use up half the tolerance); intervals with no more texels than nodes computed texel by texel.";
 
 /// Lowest and highest interpolation degree on one interval.
 pub const MIN_DEG: usize = 8;
