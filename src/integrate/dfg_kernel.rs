@@ -604,12 +604,22 @@ pub fn ln_poly(x: f64) -> f64 {
 }
 
 /// (sin x, cos x) for x ∈ [0, π/2]: with d = x − π/4 (|d| ≤ π/4),
-/// sin x = (sin d + cos d)/√2 and cos x = (cos d − sin d)/√2, and sin d, cos d by their
-/// Taylor series to degrees 17 and 18 (truncation < 1e-16), evaluated by Estrin's scheme in
-/// d²; plain arithmetic, for vectorized loops. Absolute error a few 1e-16 (unit test below).
+/// sin x = (sin d + cos d)/√2 and cos x = (cos d − sin d)/√2, sin d and cos d by
+/// [`sin_cos_taylor`]; plain arithmetic, for vectorized loops. Absolute error a few 1e-16
+/// (unit test below).
 #[inline(always)]
 pub fn sin_cos_poly(x: f64) -> (f64, f64) {
-    let d = x - std::f64::consts::FRAC_PI_4;
+    let (sd, cd) = sin_cos_taylor(x - std::f64::consts::FRAC_PI_4);
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    ((sd + cd) * h, (cd - sd) * h)
+}
+
+/// (sin d, cos d) for |d| ≤ π/4 by their Taylor series to degrees 17 and 18 (truncation
+/// < 1e-16), evaluated by Estrin's scheme in d² (a short dependency chain); sin d as d times
+/// its series, so relatively accurate down to d → 0 (unit test in ggx_polar, where it
+/// gives each line's half-angle sine and cosine).
+#[inline(always)]
+pub fn sin_cos_taylor(d: f64) -> (f64, f64) {
     let z = d * d;
     let z2 = z * z;
     let z4 = z2 * z2;
@@ -623,8 +633,7 @@ pub fn sin_cos_poly(x: f64) -> (f64, f64) {
     let cd = ((c[0] + z * c[1]) + z2 * (c[2] + z * c[3]))
         + z4 * ((c[4] + z * c[5]) + z2 * (c[6] + z * c[7]))
         + z8 * (c[8] + z * c[9]);
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    ((sd + cd) * h, (cd - sd) * h)
+    (sd, cd)
 }
 
 /// (−1)^k/(2k+1)!, k = 0..11.
