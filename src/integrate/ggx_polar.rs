@@ -49,8 +49,8 @@
 //! the integrand in w. This ε puts the nearest (s₀) and that farthest one at the same
 //! distance `2 atanh(√tanh(b_{s₀}/2))`, wider than b_{s₀} (Trefethen & Weideman 2014, §3, on
 //! conformal maps that widen the strip). (Until 2026-11-30 ε balanced s₀ against s_max and
-//! left the pole from u → i∞ nearer than both: 3% more nodes.) The rule is applied with 1, 2, 4, …, 64
-//! intervals (nested) and T_N accepted from N = 4 on when |T_N − T_{N/2}| (the error of the
+//! left the pole from u → i∞ nearer than both: 3% more nodes.) The rule is applied with 1, 2,
+//! 4, …, 64 intervals (nested) and T_N accepted from N = 4 on when |T_N − T_{N/2}| (the error of the
 //! coarser rule, an over-estimate of T_N's) is within the inner tolerance — at N = 4 also
 //! `|T_2 − T_1|²/max|R|`, which guards against T_4 and T_2 agreeing by chance before the
 //! geometric regime (the guard of QUADPACK's estimates, Piessens et al. 1983, §2.2.1); where they do not
@@ -419,7 +419,7 @@ impl Texel {
         // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
         // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
         // coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|
-        // the nodes in the order of their levels (`NODE_ORDER`), each level's computed at once
+        // the nodes in the order of their levels (`node_tables`), each level's computed at once
         nodes.eval(mobius, 0..LEVEL_START[3], vals);
         let mut sum = 0.5 * (vals[0] + vals[1]);
         // max|R| over the 5 nodes of T_4 (for the guard)

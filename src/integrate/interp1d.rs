@@ -147,6 +147,26 @@ pub fn line_with_node_tol<N, T>(
     nc: usize,
     tol: f64,
     node_tol: f64,
+    node_fn: N,
+    texel: T,
+) -> LineValues
+where
+    N: FnMut(f64, f64) -> Sample,
+    T: FnMut(usize, f64) -> Sample,
+{
+    line_with_node_tol_from(MIN_DEG, xs, breaks, nc, tol, node_tol, node_fn, texel)
+}
+
+/// [`line_with_node_tol`] with each interval's degrees starting at `first`, as in
+/// [`line_batched_from`].
+#[allow(clippy::too_many_arguments)]
+pub fn line_with_node_tol_from<N, T>(
+    first: usize,
+    xs: &[f64],
+    breaks: &[f64],
+    nc: usize,
+    tol: f64,
+    node_tol: f64,
     mut node_fn: N,
     mut texel: T,
 ) -> LineValues
@@ -154,7 +174,8 @@ where
     N: FnMut(f64, f64) -> Sample,
     T: FnMut(usize, f64) -> Sample,
 {
-    line_batched(
+    line_batched_from(
+        first,
         xs,
         breaks,
         nc,

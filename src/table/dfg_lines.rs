@@ -354,27 +354,19 @@ impl Ctx {
     /// row. Its texels computed directly are [`Ctx::pair`]'s.
     fn pair_column(&self, rl: &RoughnessLine, mu: f64, tol: f64, stop: Stop) -> LineValues {
         let view = View::new(mu);
-        interp1d::line_batched_from(
+        interp1d::line_with_node_tol_from(
             rl.first_degree,
             &rl.ys,
             &[],
             2,
             tol,
             tol * COLUMN_NODE_TOL_FRACTION,
-            |ys, t| {
-                ys.iter()
-                    .map(|&y| {
-                        unless_stopped(stop, 2, || {
-                            as_sample(self.pair_at(rl.var.alpha(y), &view, t))
-                        })
-                    })
-                    .collect()
+            |y, t| {
+                unless_stopped(stop, 2, || {
+                    as_sample(self.pair_at(rl.var.alpha(y), &view, t))
+                })
             },
-            |ks, t| {
-                ks.iter()
-                    .map(|&k| unless_stopped(stop, 2, || as_sample(self.pair(rl.row[k], &view, t))))
-                    .collect()
-            },
+            |k, t| unless_stopped(stop, 2, || as_sample(self.pair(rl.row[k], &view, t))),
         )
     }
 
