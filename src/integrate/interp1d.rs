@@ -9,7 +9,7 @@
 //!
 //! **Method.** On an interval the function is sampled at the Chebyshev–Lobatto points of
 //! degree n = 8, 16, 32, 64 (nested: raising the degree keeps every value; a caller may start
-//! the doubling at another degree, [`line_batched_from`]) and expanded in
+//! the doubling at another degree, [`line_batched`]) and expanded in
 //! Chebyshev polynomials (Trefethen, *Approximation Theory and Approximation Practice*, SIAM
 //! 2013, ch. 3). The coefficients of an analytic function decay geometrically, so the last
 //! two, `|c_{n−1}| + |c_n|`, estimate what truncation leaves out (ATAP ch. 8; the test of
@@ -134,33 +134,25 @@ where
     N: FnMut(f64, f64) -> Sample,
     T: FnMut(usize, f64) -> Sample,
 {
-    line_with_node_tol(xs, breaks, nc, tol, tol * NODE_TOL_FRACTION, node_fn, texel)
+    line_with_node_tol(
+        MIN_DEG,
+        xs,
+        breaks,
+        nc,
+        tol,
+        tol * NODE_TOL_FRACTION,
+        node_fn,
+        texel,
+    )
 }
 
-/// [`line`] with the nodes computed at `node_tol` instead of `tol/4`: for a function whose
-/// node estimates come close to what they were asked for, `Λ_n·δ` at tol/4 can exceed the
-/// `tol/2` beyond which an interval is computed directly (Λ_8 = 2.4, Λ_64 = 3.66); at
+/// [`line`] with the nodes computed at `node_tol` instead of `tol/4`, and each interval's
+/// degrees starting at `first` (see [`line_batched`]; [`MIN_DEG`] in `line`): for a function
+/// whose node estimates come close to what they were asked for, `Λ_n·δ` at tol/4 can exceed
+/// the `tol/2` beyond which an interval is computed directly (Λ_8 = 2.4, Λ_64 = 3.66); at
 /// `tol/8` it stays below `0.46·tol` for every degree.
-pub fn line_with_node_tol<N, T>(
-    xs: &[f64],
-    breaks: &[f64],
-    nc: usize,
-    tol: f64,
-    node_tol: f64,
-    node_fn: N,
-    texel: T,
-) -> LineValues
-where
-    N: FnMut(f64, f64) -> Sample,
-    T: FnMut(usize, f64) -> Sample,
-{
-    line_with_node_tol_from(MIN_DEG, xs, breaks, nc, tol, node_tol, node_fn, texel)
-}
-
-/// [`line_with_node_tol`] with each interval's degrees starting at `first`, as in
-/// [`line_batched_from`].
 #[allow(clippy::too_many_arguments)]
-pub fn line_with_node_tol_from<N, T>(
+pub fn line_with_node_tol<N, T>(
     first: usize,
     xs: &[f64],
     breaks: &[f64],
@@ -174,7 +166,7 @@ where
     N: FnMut(f64, f64) -> Sample,
     T: FnMut(usize, f64) -> Sample,
 {
-    line_batched_from(
+    line_batched(
         first,
         xs,
         breaks,
@@ -191,28 +183,13 @@ where
 /// sample-test points), `direct(is, t)` at every texel index of `is` (one interval's direct
 /// texels), in order. A caller whose samples are expensive may compute a batch in parallel;
 /// as each sample is a pure function of its point, the line's values do not depend on how.
-pub fn line_batched<N, T>(
-    xs: &[f64],
-    breaks: &[f64],
-    nc: usize,
-    tol: f64,
-    node_tol: f64,
-    nodes: N,
-    direct: T,
-) -> LineValues
-where
-    N: FnMut(&[f64], f64) -> Vec<Sample>,
-    T: FnMut(&[usize], f64) -> Vec<Sample>,
-{
-    line_batched_from(MIN_DEG, xs, breaks, nc, tol, node_tol, nodes, direct)
-}
-
-/// [`line_batched`] with each interval's degrees starting at `first` (2 ≤ first ≤
-/// [`MAX_DEG`]; then 2·first, 4·first, … up to [`MAX_DEG`]) instead of [`MIN_DEG`]: for a
-/// line whose functions are known to need about `first`, it skips the degrees below (a
-/// function that needs 24 costs 25 nodes instead of 33: 8 and 16 fail, 32 passes).
+///
+/// Each interval's degrees start at `first` (2 ≤ first ≤ [`MAX_DEG`]; then 2·first,
+/// 4·first, … up to [`MAX_DEG`]); callers pass [`MIN_DEG`] unless their functions are known
+/// to need more, whose low degrees it then skips (a function that needs 24 costs 25 nodes
+/// from 24, 33 from 8: 8 and 16 fail, 32 passes).
 #[allow(clippy::too_many_arguments)]
-pub fn line_batched_from<N, T>(
+pub fn line_batched<N, T>(
     first: usize,
     xs: &[f64],
     breaks: &[f64],
@@ -452,7 +429,7 @@ mod tests {
         let f = |x: f64| 1.0 / (1.0 + 0.64 * x * x);
         let xs: Vec<f64> = pts(2000).iter().map(|x| 2.0 * x - 1.0).collect();
         let run = |first: usize| {
-            line_batched_from(
+            line_batched(
                 first,
                 &xs,
                 &[],

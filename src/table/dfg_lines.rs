@@ -115,7 +115,7 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 32.0];
 
 /// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
-/// ([`interp1d::line_batched_from`]). The band from α = 1/32 up needs degree ~20–24 in
+/// ([`interp1d::line_batched`]). The band from α = 1/32 up needs degree ~20–24 in
 /// ln α at most view cosines (its Chebyshev coefficients fall below the column tolerance,
 /// ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs 9 + 8 + 16 = 33 nodes, from
 /// 24 it costs 25. Measured (cachegrind, one thread, 2026-11-30): filament-dfg 128²
@@ -213,7 +213,7 @@ struct RoughnessLine {
     alphas: Vec<f64>,
     /// The axis index of the k-th smallest α.
     row: Vec<usize>,
-    /// The degree its interpolation starts at ([`interp1d::line_batched_from`]).
+    /// The degree its interpolation starts at ([`interp1d::line_batched`]).
     first_degree: usize,
 }
 
@@ -354,7 +354,7 @@ impl Ctx {
     /// row. Its texels computed directly are [`Ctx::pair`]'s.
     fn pair_column(&self, rl: &RoughnessLine, mu: f64, tol: f64, stop: Stop) -> LineValues {
         let view = View::new(mu);
-        interp1d::line_with_node_tol_from(
+        interp1d::line_with_node_tol(
             rl.first_degree,
             &rl.ys,
             &[],
@@ -386,6 +386,7 @@ impl Ctx {
             unless_stopped(stop, 1, || cloth_sample(cloth_texel(&view, alpha, t)))
         };
         interp1d::line_with_node_tol(
+            interp1d::MIN_DEG,
             &rl.ys,
             &[],
             1,
@@ -412,6 +413,7 @@ fn grid(
     column: &(dyn Fn(f64, f64) -> LineValues + Sync),
 ) -> LineValues {
     interp1d::line_batched(
+        interp1d::MIN_DEG,
         &xs[i0..],
         breaks,
         channels,
@@ -444,7 +446,7 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
         Some(a) if a >= PAIR_ROW_WIDE_FROM => PAIR_ROW_FIRST_DEGREE,
         _ => interp1d::MIN_DEG,
     };
-    interp1d::line_batched_from(
+    interp1d::line_batched(
         first,
         xs,
         &[GRAZING_BREAK, ROW_BREAK],
@@ -480,6 +482,7 @@ fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: St
     let direct_below = strip_end.is_none();
     let k0 = strip_end.unwrap_or_else(|| xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK));
     let mut out = interp1d::line_with_node_tol(
+        interp1d::MIN_DEG,
         &xs[k0..],
         &[],
         1,
