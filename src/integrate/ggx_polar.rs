@@ -847,29 +847,6 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
 mod tests {
     use super::*;
 
-    /// `sin_cos_taylor`, which gives each line's half-angle sine and cosine, against libm on
-    /// [0, π/4]: within 3e-16 absolute (both are within ~2 ulp of the true values, which are
-    /// at most 1) and 4e-16 relative for the sine, down to 1e-300 (the lines near θl = 0 of
-    /// a narrow lobe at the normal view need it relatively accurate).
-    #[test]
-    fn sin_cos_taylor_matches_libm() {
-        let n = 100_000;
-        for i in 0..=n {
-            let x = std::f64::consts::FRAC_PI_4 * i as f64 / n as f64;
-            let (s, c) = sin_cos_taylor(x);
-            let (ws, wc) = x.sin_cos();
-            assert!((s - ws).abs() <= 3e-16 && (c - wc).abs() <= 3e-16, "x {x}");
-            assert!((s - ws).abs() <= 4e-16 * ws, "x {x}: {s} vs {ws}");
-        }
-        for x in [1e-300, 1e-20, 1e-8, 1e-3] {
-            let (s, c) = sin_cos_taylor(x);
-            assert!(
-                (s - x.sin()).abs() <= 2e-16 * x && (c - x.cos()).abs() <= 2e-16,
-                "x {x}"
-            );
-        }
-    }
-
     /// `sin_half` against libm's `sin(δ/2)` on both sides of its branch (|δ/2| = 0.05) and
     /// down to δ = 1e-12: within 4e-15 relative (the series is exact to ~1e-22 below the
     /// branch, the half-angle products have absolute error ~2e-16 above it, where
