@@ -15,7 +15,7 @@
 //! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
 //! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α) (since in (√μ, ln α):
-//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, see [`PAIR_BANDS`]): 3.8 M / 5.4 M
+//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, since round 11 from 1/40, see [`PAIR_BANDS`]): 3.8 M / 5.4 M
 //!   (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by
 //!   rows 7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
 //!   rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
@@ -111,8 +111,11 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 /// 2.22 M / 5.89 M (1/28: 2.18 / 6.03, 1/36: 2.19 / 6.01, 1/24: 2.26 / 6.48, 1/16:
 /// 4.03 / 6.90; [1/128, 1/32] and [1/512, 1/32] 6.54 M and 6.90 M at 512²; three bands
 /// [1/256, 1/64, x] for x = 1/4, 1/8, 1/16: 2.36–2.76 M / 6.75–7.02 M); karis-envbrdf
-/// 1.97 → 1.92 M at 128².
-const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 32.0];
+/// 1.97 → 1.92 M at 128². Since the polar kernel's wider warp (`WARP_LAMBDA`, 2026-11-30),
+/// with [`PAIR_ROW_FIRST_DEGREE`] 20, instructions (cachegrind, one thread; filament-dfg
+/// 128² / 512², karis-envbrdf): upper band from 1/32 236 / 664 / 169 M, 1/36 231 / 665 /
+/// 164, 1/40 228 / 667 / 162, 1/44 239 / 682 / 159, 1/48 247 / 694 / 165.
+const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 40.0];
 
 /// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
 /// ([`interp1d::line_batched`]). The band from α = 1/32 up needs degree ~20–24 in
@@ -128,9 +131,11 @@ const PAIR_FIRST_DEGREE: [usize; 2] = [interp1d::MIN_DEG, 24];
 /// 9 + 8 + 16 nodes), narrower lobes ≤ 16. Measured (cachegrind, one thread, 2026-11-30):
 /// filament-dfg 128² 288 → 277 M instructions, karis-envbrdf 212 → 203 M; from α = 1/128
 /// 279 M and 205 M, from 1/256 281 M and 208 M, every row from 12 286 M and 209 M. (Only
-/// tables below ~200 rows have such rows: larger ones put [1/256, 1/32) on a grid.)
+/// tables below ~200 rows have such rows: larger ones put [1/256, 1/40) on a grid.) Since
+/// the polar kernel's wider warp (2026-11-30), with the upper band from 1/40: from degree
+/// 24 231 M and 163 M, 22 230 M and 163 M, 20 228 M and 162 M, 18 231 M and 162 M.
 const PAIR_ROW_WIDE_FROM: f64 = 0.01;
-const PAIR_ROW_FIRST_DEGREE: usize = 24;
+const PAIR_ROW_FIRST_DEGREE: usize = 20;
 
 /// A band goes on a grid when it holds at least this many rows: a grid costs about what
 /// 24 rows do (at 512² the 32 rows of [1/256, 1/64) cost 7.1 M by rows, 5.6 M on a grid;
@@ -876,9 +881,9 @@ mod tests {
         }
     }
 
-    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/32, r ≥ 0.1768: 105
+    /// The plan of filament-dfg's axes: at 128² one pair grid (α ≥ 1/40, r ≥ 0.1581: 108
     /// rows) and the other rows by rows; at 512² two pair grids (the bands from 1/256 and
-    /// 1/32 up hold 59 and 421 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
+    /// 1/40 up hold 49 and 431 rows); the wide cloth lobes on a grid, the narrow ones by rows, and at 512²
     /// (128 narrow rows) their grazing texels by the strip and most of the rest on a grid.
     #[test]
     fn plan_follows_the_rules() {
@@ -889,10 +894,10 @@ mod tests {
             assert_eq!(p.pair_grids.len(), grids, "{n}²");
             let on_grids: usize = p.pair_grids.iter().map(|g| g.row.len()).sum();
             assert_eq!(on_grids + p.pair_rows.len(), n, "every row once");
-            let widest = if n == 128 { 105 } else { 421 };
+            let widest = if n == 128 { 108 } else { 431 };
             assert_eq!(p.pair_grids.last().unwrap().row.len(), widest, "{n}²");
             if n == 512 {
-                assert_eq!(p.pair_grids[0].row.len(), 59);
+                assert_eq!(p.pair_grids[0].row.len(), 49);
             }
             let wide = p.cloth_grid.as_ref().expect("a wide cloth grid");
             assert_eq!(wide.row.len(), 3 * n / 4);
@@ -966,28 +971,31 @@ mod tests {
         );
     }
 
-    /// A 128 × 96 table, r from 0.02 to 1: the pair on a grid (the rows with α ≥ 1/32), the
-    /// wide cloth lobes on a grid (73 rows with α ≥ 1/16), the other rows by rows; the columns
-    /// checked include the grazing ones, the rows lie either side of both edges.
+    /// A 128 × 96 table, r from 0.02 to 1: the pair on a grid (the rows from 14 on, α ≥ 1/40),
+    /// the wide cloth lobes on a grid (73 rows with α ≥ 1/16), the other rows by rows; the
+    /// columns checked include the grazing ones, the rows lie either side of both edges.
     #[test]
     fn lines_match_texel_values() {
         let s = spec(128, [0.02, 1.0], 96, true, 1e-7);
         let p = plan(128, &s.axes[1], true);
         assert_eq!(p.pair_grids.len(), 1);
         assert!(p.cloth_grid.is_some() && p.strip.is_none() && p.narrow_grid.is_none());
-        check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 10, 11, 22, 23, 95]);
+        assert_eq!(p.pair_grids[0].row[0], 14);
+        check_lines(&s, &[0, 1, 4, 20, 77, 127], &[0, 13, 14, 22, 23, 95]);
     }
 
-    /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/256, 1/32)
-    /// on a grid, the rows below and above it (fewer than GRID_MIN_ROWS) by rows; the cloth channel by the strip below μ = 0.01
+    /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/256, 1/40)
+    /// and of [1/40, 1/16) on grids, the 13 rows below them (fewer than GRID_MIN_ROWS) by rows;
+    /// the cloth channel by the strip below μ = 0.01
     /// (the first column), on a grid above it for α ≥ 1/1024, by rows below.
     #[test]
     fn narrow_lines_match_texel_values() {
         let s = spec(128, [0.02, 0.249], 70, true, 1e-7);
         let p = plan(128, &s.axes[1], true);
-        assert_eq!(p.pair_grids.len(), 1);
+        let first: Vec<usize> = p.pair_grids.iter().map(|g| g.row[0]).collect();
+        assert_eq!(first, [13, 42]);
         assert!(p.strip.is_some() && p.narrow_grid.is_some() && !p.cloth_rows.is_empty());
-        check_lines(&s, &[0, 1, 2, 5, 60, 127], &[0, 3, 4, 35, 69]);
+        check_lines(&s, &[0, 1, 2, 5, 60, 127], &[0, 3, 4, 12, 13, 41, 42, 69]);
     }
 
     /// The strip's columns (the narrow lobes' cloth in y = ln α, 80 rows from α = 4e-4 to
