@@ -768,6 +768,9 @@ pub fn ggx_albedo(mu: f64, alpha: f64, smith: Smith, tol: f64) -> Result<Estimat
 /// 127.7k / 322.6k, 2 115.1k / 254.4k, 2.5 114.7k / 253.0k, 3 114.4k / 252.1k, 4 114.4k /
 /// 252.2k; 3 on the lower panel with 1.5 or 2 on the upper cost 1.9% and 0.1% more; the cap
 /// at 0.7·2α or 1.2·2α, 1–2% more. Instructions (cachegrind, one thread) 262 → 242 M at 128².
+/// The estimates still bound the errors: `examples/polar_check.rs 100 100` (10,000 points,
+/// two tolerances, both channels) finds none outside, largest error/estimate 0.28 (0.81 at
+/// factor 1, at a point whose estimate is ~5e-12).
 const WARP_LAMBDA: f64 = 3.0;
 
 fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Estimate<2>, u64> {
