@@ -333,6 +333,56 @@ impl Texel {
         with_fc: bool,
         vals: &mut [f64; NTRAP + 1],
     ) -> Line {
+        self.setup(theta_l, delta, tol_k, with_fc).run(vals)
+    }
+
+    /// [`Texel::line`] at two points `(θl, δ)` at once, with scratch space for each: the
+    /// same operations on each line, so the same bits, but the two lines' trapezoid levels
+    /// run in lockstep. A line is a chain of dependent operations ending in a branch the
+    /// CPU cannot predict (the level at which the rule stops): one line at a time left most
+    /// of the core idle, two at a time let the chains overlap. Measured on filament-dfg at
+    /// 128² (one thread, 21 interleaved runs, 2026-11-30): CPU time 34.8 → 32.2 ms (median),
+    /// with 4% more instructions; four lines at a time were no faster than two.
+    fn line_pair(
+        &self,
+        a: (f64, f64),
+        b: (f64, f64),
+        tol_k: f64,
+        with_fc: bool,
+        va: &mut [f64; NTRAP + 1],
+        vb: &mut [f64; NTRAP + 1],
+    ) -> [Line; 2] {
+        let sa = self.setup(a.0, a.1, tol_k, with_fc);
+        let sb = self.setup(b.0, b.1, tol_k, with_fc);
+        match (sa, sb) {
+            (Setup::Trap(ta), Setup::Trap(tb)) => {
+                let mut sta = ta.start(va);
+                let mut stb = tb.start(vb);
+                let (mut ra, mut rb) = (None, None);
+                for level in 1..=MAX_LOG2 {
+                    if ra.is_none() {
+                        ra = ta.step(&mut sta, level, va);
+                    }
+                    if rb.is_none() {
+                        rb = tb.step(&mut stb, level, vb);
+                    }
+                    if ra.is_some() && rb.is_some() {
+                        break;
+                    }
+                }
+                [
+                    ra.unwrap_or_else(|| ta.finish(&sta)),
+                    rb.unwrap_or_else(|| tb.finish(&stb)),
+                ]
+            }
+            (sa, sb) => [sa.run(va), sb.run(vb)],
+        }
+    }
+
+    /// A line's closed forms, and its azimuthal rule set up where the Schlick-weighted
+    /// part is asked for (`with_fc`).
+    #[inline(always)]
+    fn setup(&self, theta_l: f64, delta: f64, tol_k: f64, with_fc: bool) -> Setup {
         // (θl/2 ≤ π/4: a series, inlined; libm's call was ~7% of a bake's instructions)
         let (hs, hc) = sin_cos_taylor(0.5 * theta_l);
         let sin_l = 2.0 * hs * hc;
@@ -360,13 +410,13 @@ impl Texel {
         let j2 = s / (r * r * r);
         let i0 = a2 * (1.0 + 2.0 * big_m * j1 + big_m * big_m * j2);
         if !with_fc {
-            return Line {
+            return Setup::Done(Line {
                 k,
                 i0,
                 i5: 0.0,
                 err: 0.0,
                 evals: 1,
-            };
+            });
         }
 
         // g(M), g'(M) and P₂ = G ÷ (s − s₀) ÷ (s − s₀) after removing g'(M)(s + s₀)
@@ -416,54 +466,145 @@ impl Texel {
             e2,
         };
         let mobius = eps < 1.0;
-        // trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
-        // is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
-        // coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|
-        // the nodes in the order of their levels (`node_tables`), each level's computed at once
-        nodes.eval(mobius, 0..LEVEL_START[3], vals);
-        let mut sum = 0.5 * (vals[0] + vals[1]);
-        // max|R| over the 5 nodes of T_4 (for the guard)
+        Setup::Trap(Trap {
+            k,
+            i0,
+            inner_tol,
+            a2,
+            g_m,
+            dg_m,
+            j1,
+            j2,
+            dm,
+            q,
+            r,
+            s_min,
+            nodes,
+            mobius,
+        })
+    }
+}
+
+/// A line after [`Texel::setup`]: finished (no Schlick-weighted part asked for), or its
+/// azimuthal rule ready to run.
+enum Setup {
+    Done(Line),
+    Trap(Trap),
+}
+
+impl Setup {
+    #[inline(always)]
+    fn run(self, vals: &mut [f64; NTRAP + 1]) -> Line {
+        match self {
+            Setup::Done(l) => l,
+            Setup::Trap(t) => t.run(vals),
+        }
+    }
+}
+
+/// One line's azimuthal rule for `I₅`: the nodes, the line's closed-form parts, and what
+/// the fallback rule in ψ needs.
+struct Trap {
+    k: f64,
+    i0: f64,
+    inner_tol: f64,
+    a2: f64,
+    g_m: f64,
+    dg_m: f64,
+    j1: f64,
+    j2: f64,
+    dm: f64,
+    q: f64,
+    r: f64,
+    s_min: f64,
+    nodes: Nodes,
+    mobius: bool,
+}
+
+/// The trapezoid sums of a [`Trap`] so far: the running sum, max|R| over T_4's nodes (for
+/// the guard), the nodes spent, and T_{N/4}, T_{N/2}.
+struct TrapState {
+    sum: f64,
+    fmax: f64,
+    evals: u64,
+    t_prev: [f64; 2],
+}
+
+impl Trap {
+    /// Trapezoid sums T_N on [0, π] (as means, T_N/π), nested by doubling from N = 1; T_N
+    /// is accepted from N = 4 on with the estimate |T_N − T_{N/2}| (the error of the
+    /// coarser rule), at N = 4 guarded against a chance agreement by |T_2 − T_1|²/max|R|;
+    /// where no level is accepted, the rule in ψ ([`i5_psi`]).
+    #[inline(always)]
+    fn run(&self, vals: &mut [f64; NTRAP + 1]) -> Line {
+        let mut st = self.start(vals);
+        for level in 1..=MAX_LOG2 {
+            if let Some(l) = self.step(&mut st, level, vals) {
+                return l;
+            }
+        }
+        self.finish(&st)
+    }
+
+    /// The nodes of levels 0–2 (the nodes in the order of their levels, `node_tables`,
+    /// each level's computed at once) and T_1.
+    #[inline(always)]
+    fn start(&self, vals: &mut [f64; NTRAP + 1]) -> TrapState {
+        self.nodes.eval(self.mobius, 0..LEVEL_START[3], vals);
+        let sum = 0.5 * (vals[0] + vals[1]);
         let mut fmax = vals[0].abs().max(vals[1].abs());
         for v in &vals[2..LEVEL_START[3]] {
             fmax = fmax.max(v.abs());
         }
-        let mut evals = 2u64;
-        // T_{N/4}, T_{N/2}
-        let mut t_prev = [0.0f64, sum];
-        for level in 1..=MAX_LOG2 {
-            let new = LEVEL_START[level]..LEVEL_START[level + 1];
-            if level > 2 {
-                nodes.eval(mobius, new.clone(), vals);
-            }
-            for v in &vals[new.clone()] {
-                sum += v;
-            }
-            evals += new.len() as u64;
-            let cur = sum / (1usize << level) as f64;
-            let mut d = (cur - t_prev[1]).abs();
-            if level == 2 {
-                let d2 = (t_prev[1] - t_prev[0]).abs();
-                d = d.max(d2 * d2 / fmax.max(inner_tol));
-            }
-            if level >= 2 && d <= inner_tol && cur.is_finite() {
-                let i5 = a2 * (g_m * j2 + dg_m * j1 + cur);
-                return Line {
-                    k,
-                    i0,
-                    i5,
-                    err: d,
-                    evals,
-                };
-            }
-            t_prev = [t_prev[1], cur];
+        TrapState {
+            sum,
+            fmax,
+            evals: 2,
+            t_prev: [0.0, sum],
         }
-        let (i5, err, n) = i5_psi(dm, q, r, s_min * s_min, a2, inner_tol);
+    }
+
+    /// Level `level` (T_N, N = 2^level): the line if it is accepted there.
+    #[inline(always)]
+    fn step(&self, st: &mut TrapState, level: usize, vals: &mut [f64; NTRAP + 1]) -> Option<Line> {
+        let new = LEVEL_START[level]..LEVEL_START[level + 1];
+        if level > 2 {
+            self.nodes.eval(self.mobius, new.clone(), vals);
+        }
+        for v in &vals[new.clone()] {
+            st.sum += v;
+        }
+        st.evals += new.len() as u64;
+        let cur = st.sum / (1usize << level) as f64;
+        let mut d = (cur - st.t_prev[1]).abs();
+        if level == 2 {
+            let d2 = (st.t_prev[1] - st.t_prev[0]).abs();
+            d = d.max(d2 * d2 / st.fmax.max(self.inner_tol));
+        }
+        if level >= 2 && d <= self.inner_tol && cur.is_finite() {
+            let i5 = self.a2 * (self.g_m * self.j2 + self.dg_m * self.j1 + cur);
+            return Some(Line {
+                k: self.k,
+                i0: self.i0,
+                i5,
+                err: d,
+                evals: st.evals,
+            });
+        }
+        st.t_prev = [st.t_prev[1], cur];
+        None
+    }
+
+    /// The fallback where no trapezoid level is accepted.
+    fn finish(&self, st: &TrapState) -> Line {
+        let p_m_q = self.s_min * self.s_min;
+        let (i5, err, n) = i5_psi(self.dm, self.q, self.r, p_m_q, self.a2, self.inner_tol);
         Line {
-            k,
-            i0,
+            k: self.k,
+            i0: self.i0,
             i5,
             err,
-            evals: evals + n,
+            evals: st.evals + n,
         }
     }
 }
@@ -637,7 +778,7 @@ const OUTER_MAX_LINES: u64 = 1 << 12;
 /// [`OUTER_MAX_LEVEL`], stopping at the first whose estimate (the module doc's "Error") is at
 /// most `tol` in both channels, else bisected (to `depth` levels, within `lines` of
 /// [`OUTER_MAX_LINES`]). Adds value and error to `out`, the lines used to `lines`.
-fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
+fn cc_tail<F: FnMut(f64, Option<f64>) -> [[f64; 2]; 2]>(
     f: &mut F,
     (a, b): (f64, f64),
     tol: f64,
@@ -660,10 +801,20 @@ fn cc_tail<F: FnMut(f64) -> [f64; 2]>(
         let ls = 1usize << (OUTER_MAX_LEVEL - k);
         // the new nodes of level k: all three at k = 1, else the odd multiples of ls
         let (mut l, step) = if k == 1 { (0, ls) } else { (ls, 2 * ls) };
+        // (two at a time where there are two: `f` then runs both lines in lockstep)
         while l < NV {
-            vals[l] = f(mid + half * r.x[l * G]);
-            *lines += 1;
-            l += step;
+            let x = mid + half * r.x[l * G];
+            if l + step < NV {
+                let [va, vb] = f(x, Some(mid + half * r.x[(l + step) * G]));
+                vals[l] = va;
+                vals[l + step] = vb;
+                *lines += 2;
+                l += 2 * step;
+            } else {
+                vals[l] = f(x, None)[0];
+                *lines += 1;
+                l += step;
+            }
         }
         if k + 1 < OUTER_MIN_LEVEL {
             continue;
@@ -798,7 +949,7 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
     ];
     let mut inner_err = 0.0f64;
     let mut evals = 0u64;
-    let mut scratch = [0.0f64; NTRAP + 1];
+    let mut scratch = [[0.0f64; NTRAP + 1]; 2];
     let mut total = Estimate::<2>::zero();
     // each panel's outer rule within tol/8 per channel (three panels, two channels summed
     // into channel 0, and the inner rules' tol/4: at most tol in all)
@@ -808,7 +959,7 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             continue;
         }
         let t_max = (len / scale).asinh();
-        let mut f = |x: f64| {
+        let node = |x: f64| {
             // sinh and cosh from one expm1: with e = e^x − 1, sinh x = e(e + 2)/(2(e + 1))
             // (no cancellation near 0) and cosh x = sinh x + 1/(e + 1)
             let e = x.exp_m1();
@@ -822,13 +973,30 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
             } else {
                 theta_l - theta_v
             };
-            let jac = scale * (sh + inv);
-            // an inner error δ on the line of weight k moves the result by k·α²·δ
-            // per unit θl: δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
-            let l = t.line(theta_l, delta, tol / (2.0 * PI * a2), with_fc, &mut scratch);
-            inner_err = inner_err.max(l.k * a2 * l.err);
-            evals += l.evals;
-            [l.k * jac * l.i0, l.k * jac * l.i5]
+            (theta_l, delta, scale * (sh + inv))
+        };
+        // an inner error δ on the line of weight k moves the result by k·α²·δ per unit θl:
+        // δ ≤ tol/(2π α² k) keeps the sum ≤ tol/4
+        let tol_k = tol / (2.0 * PI * a2);
+        let mut f = |x: f64, y: Option<f64>| {
+            let (ta, da, ja) = node(x);
+            let mut put = |l: &Line, jac: f64| {
+                inner_err = inner_err.max(l.k * a2 * l.err);
+                evals += l.evals;
+                [l.k * jac * l.i0, l.k * jac * l.i5]
+            };
+            match y {
+                None => {
+                    let l = t.line(ta, da, tol_k, with_fc, &mut scratch[0]);
+                    [put(&l, ja), [0.0; 2]]
+                }
+                Some(y) => {
+                    let (tb, db, jb) = node(y);
+                    let [sa, sb] = &mut scratch;
+                    let [la, lb] = t.line_pair((ta, da), (tb, db), tol_k, with_fc, sa, sb);
+                    [put(&la, ja), put(&lb, jb)]
+                }
+            }
         };
         let mut e = Estimate::<2>::zero();
         let mut lines = 0u64;
