@@ -77,19 +77,27 @@ pub fn nested_cc_indexed<const N: usize, F: FnMut(usize, f64) -> [f64; N]>(
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
     let mut vals = [[0.0f64; N]; NMAX];
     let mut evals = 0u64;
+    let mut prev = [[0.0f64; N]; 2];
     for k in FIRST_LEVEL..=max_level {
         let stride = 1usize << (MAX_LEVEL - k);
         // new nodes of level k: odd multiples of its stride (all of them at the first level)
         let mut i = 0;
         while i < NMAX {
-            if k == FIRST_LEVEL || (i / stride) % 2 == 1 {
+            // (i is a multiple of the power of two `stride`: an odd multiple is a new node)
+            if k == FIRST_LEVEL || i & stride != 0 {
                 vals[i] = f(i, mid + half * r.x[i]);
                 evals += 1;
             }
             i += stride;
         }
+        // the rules of levels k, k − 1 and k − 2; the coarser two are the previous levels'
+        // (the same sums over the same values, so the same bits), computed only at the first
         let mut q = [[0.0f64; N]; 3];
-        for (m, qm) in q.iter_mut().enumerate() {
+        let fresh = if k == FIRST_LEVEL { 3 } else { 1 };
+        if k > FIRST_LEVEL {
+            (q[1], q[2]) = (prev[0], prev[1]);
+        }
+        for (m, qm) in q.iter_mut().enumerate().take(fresh) {
             let km = k - m;
             let s = 1usize << (MAX_LEVEL - km);
             for (j, &w) in r.w[km].iter().enumerate() {
@@ -101,6 +109,7 @@ pub fn nested_cc_indexed<const N: usize, F: FnMut(usize, f64) -> [f64; N]>(
                 *v *= half;
             }
         }
+        prev = [q[0], q[1]];
         let mut e = Estimate {
             value: q[0],
             error: [0.0; N],
