@@ -791,7 +791,9 @@ const OUTER_MAX_LINES: u64 = 1 << 12;
 /// ∫ₐᵇ f (both channels) by nested Clenshaw–Curtis levels [`OUTER_MIN_LEVEL`]`..=`
 /// [`OUTER_MAX_LEVEL`], stopping at the first whose estimate (the module doc's "Error") is at
 /// most `tol` in both channels, else bisected (to `depth` levels, within `lines` of
-/// [`OUTER_MAX_LINES`]). Adds value and error to `out`, the lines used to `lines`.
+/// [`OUTER_MAX_LINES`]). Adds value and error to `out`, the lines used to `lines`. `f(x, None)`
+/// is f at x (in its first entry), `f(x, Some(y))` f at x and at y (so that it can compute two
+/// lines at once, [`Texel::line_pair`]).
 fn cc_tail<F: FnMut(f64, Option<f64>) -> [[f64; 2]; 2]>(
     f: &mut F,
     (a, b): (f64, f64),
@@ -1120,6 +1122,77 @@ mod tests {
             }
             assert_eq!(checked, 12);
         }
+    }
+
+    /// Two lines at once ([`Texel::line_pair`]) are the same bits as each alone
+    /// ([`Texel::line`]): k, I₀, I₅, error and evaluations, with and without the
+    /// Schlick-weighted part, on lines that stop at every trapezoid level, use the Möbius map,
+    /// or fall back to the rule in ψ (both directions within a degree of grazing).
+    #[test]
+    fn line_pairs_are_the_lines_alone() {
+        let same = |a: &Line, b: &Line| {
+            a.k.to_bits() == b.k.to_bits()
+                && a.i0.to_bits() == b.i0.to_bits()
+                && a.i5.to_bits() == b.i5.to_bits()
+                && a.err.to_bits() == b.err.to_bits()
+                && a.evals == b.evals
+        };
+        let (mut fallbacks, mut checked) = (0, 0);
+        let mut levels = std::collections::BTreeSet::new();
+        for &(mu, alpha) in &[
+            (0.9, 0.5),
+            (0.5, 0.05),
+            (0.02, 0.3),
+            (0.01, 1e-3),
+            (1e-4, 0.1),
+        ] {
+            let t = Texel::new(mu, alpha, Smith::HeightCorrelated);
+            let thetas: Vec<f64> = (0..24)
+                .map(|i| {
+                    // spread over [0, π/2], denser at the horizon (with the view within
+                    // 0.006° of it, the lines within 0.2° fall back) and around θv
+                    let u = (i as f64 + 0.5) / 24.0;
+                    if i % 3 == 0 {
+                        FRAC_PI_2 - 0.004 * u
+                    } else if i % 3 == 1 {
+                        (t.theta_v + 0.3 * (u - 0.5) * alpha).clamp(0.0, FRAC_PI_2)
+                    } else {
+                        FRAC_PI_2 * u
+                    }
+                })
+                .collect();
+            for with_fc in [true, false] {
+                for w in thetas.windows(2) {
+                    let (ta, tb) = (w[0], w[1]);
+                    let tol_k = 1e-9 / (2.0 * PI * t.a2);
+                    let mut v = [[0.0; NTRAP + 1]; 3];
+                    let la = t.line(ta, ta - t.theta_v, tol_k, with_fc, &mut v[0]);
+                    let lb = t.line(tb, tb - t.theta_v, tol_k, with_fc, &mut v[0]);
+                    let [v1, v2] = &mut [v[1], v[2]];
+                    let [pa, pb] = t.line_pair(
+                        (ta, ta - t.theta_v),
+                        (tb, tb - t.theta_v),
+                        tol_k,
+                        with_fc,
+                        v1,
+                        v2,
+                    );
+                    assert!(
+                        same(&la, &pa) && same(&lb, &pb),
+                        "θl {ta}, {tb} at μ {mu}, α {alpha}"
+                    );
+                    checked += 1;
+                    if la.evals > NTRAP as u64 + 1 {
+                        fallbacks += 1;
+                    } else if with_fc {
+                        levels.insert(la.evals);
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 5 * 2 * 23);
+        assert!(fallbacks > 0, "no line fell back to the rule in ψ");
+        assert!(levels.len() >= 3, "lines stopped at levels {levels:?} only");
     }
 
     /// The closed-form I₀ equals a brute-force φ integral of GGX's D, and I₅ (subtracted
