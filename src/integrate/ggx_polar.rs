@@ -1137,7 +1137,7 @@ mod tests {
                 && a.err.to_bits() == b.err.to_bits()
                 && a.evals == b.evals
         };
-        let (mut fallbacks, mut checked) = (0, 0);
+        let (mut fallbacks, mut mobius, mut checked) = (0, 0, 0);
         let mut levels = std::collections::BTreeSet::new();
         for &(mu, alpha) in &[
             (0.9, 0.5),
@@ -1182,6 +1182,9 @@ mod tests {
                         "θl {ta}, {tb} at μ {mu}, α {alpha}"
                     );
                     checked += 1;
+                    if let Setup::Trap(tr) = t.setup(ta, ta - t.theta_v, tol_k, with_fc) {
+                        mobius += usize::from(tr.mobius);
+                    }
                     if la.evals > NTRAP as u64 + 1 {
                         fallbacks += 1;
                     } else if with_fc {
@@ -1192,6 +1195,7 @@ mod tests {
         }
         assert_eq!(checked, 5 * 2 * 23);
         assert!(fallbacks > 0, "no line fell back to the rule in ψ");
+        assert!(mobius > 0, "no line used the Möbius map");
         assert!(levels.len() >= 3, "lines stopped at levels {levels:?} only");
     }
 
