@@ -15,8 +15,8 @@
 //! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
 //! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α) (since in (√μ, ln α):
-//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, since round 11 from 1/40, see [`PAIR_BANDS`]): 3.8 M / 5.4 M
-//!   (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by
+//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, since round 11 from 1/40, see
+//!   [`PAIR_BANDS`]): 3.8 M / 5.4 M (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64) on a grid of its own (5.6 M; by
 //!   rows 7.1 M): a band goes on a grid where it holds at least [`GRID_MIN_ROWS`] rows, else by
 //!   rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
 //!   3.4 M. One grid over every roughness cost 19.8 M / 53.3 M: near grazing the split sum of
@@ -118,7 +118,8 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 40.0];
 
 /// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
-/// ([`interp1d::line_batched`]). The band from α = 1/32 up needs degree ~20–24 in
+/// ([`interp1d::line_batched`]). The upper band (measured from α = 1/32 up, since round 11
+/// from 1/40) needs degree ~20–24 in
 /// ln α at most view cosines (its Chebyshev coefficients fall below the column tolerance,
 /// ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs 9 + 8 + 16 = 33 nodes, from
 /// 24 it costs 25. Measured (cachegrind, one thread, 2026-11-30): filament-dfg 128²
@@ -985,9 +986,9 @@ mod tests {
     }
 
     /// A 128 × 70 table of narrow lobes only (r from 0.02 to 0.249): the pair of [1/256, 1/40)
-    /// and of [1/40, 1/16) on grids, the 13 rows below them (fewer than GRID_MIN_ROWS) by rows;
-    /// the cloth channel by the strip below μ = 0.01
-    /// (the first column), on a grid above it for α ≥ 1/1024, by rows below.
+    /// and from 1/40 up on grids, the 13 rows below them (fewer than GRID_MIN_ROWS) by rows;
+    /// the cloth channel by the strip below μ = 0.01 (the first column), on a grid above it
+    /// for α ≥ 1/1024, by rows below. The rows checked lie either side of each edge.
     #[test]
     fn narrow_lines_match_texel_values() {
         let s = spec(128, [0.02, 0.249], 70, true, 1e-7);
