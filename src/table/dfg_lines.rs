@@ -120,8 +120,8 @@ const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 40.0];
 /// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
 /// ([`interp1d::line_batched`]). The upper band (measured from α = 1/32 up, since round 11 from
 /// 1/40) needs degree ~20–24 in ln α at most view cosines (its Chebyshev coefficients fall
-/// below the column tolerance, ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs 9 + 8
-/// + 16 = 33 nodes, from 24 it costs 25. Measured (cachegrind, one thread, 2026-11-30):
+/// below the column tolerance, ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs
+/// 9 + 8 + 16 = 33 nodes, from 24 it costs 25. Measured (cachegrind, one thread, 2026-11-30):
 /// filament-dfg 128² 305 → 288 M instructions, 512² 807 → 795 M, karis-envbrdf 227 → 212 M;
 /// from 12 (and 6) 292 M at 128²; the lower band from 24, 12 or 6 cost more at 512² (826, 815,
 /// 812 M).
