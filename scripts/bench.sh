@@ -5,7 +5,7 @@
 # table, size, threads, wall ms, CPU ms, evaluations, evaluations/s, estimated and measured
 # max error, peak RSS) followed by the issue's targets. Progress goes to stderr.
 #
-#   scripts/bench.sh                      # everything (the 512² rows cost minutes today)
+#   scripts/bench.sh                      # everything (about a minute on 2 cores)
 #   scripts/bench.sh --no-large           # the presets only
 #   scripts/bench.sh --runs 3 --no-error  # faster: fewer runs, no reference integrals
 #   scripts/bench.sh presets/filament-dfg.json
@@ -15,5 +15,12 @@
 # Outputs go to target/bench/ (scratch).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The runner is an example, so cargo builds the dev-dependencies with it, and one of them
+# (libktx-rs-sys, the tests' KTX2 judge) builds Khronos' C sources with cmake.
+if ! command -v cmake >/dev/null 2>&1; then
+    echo "scripts/bench.sh: cmake not found; the benchmark runner is built with the test" \
+        "dependencies, and libktx-rs-sys needs cmake (Debian: apt-get install cmake)" >&2
+    exit 1
+fi
 cargo build --release --quiet --bin brdfbake --example bench
 exec target/release/examples/bench --bin target/release/brdfbake "$@"
