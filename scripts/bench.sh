@@ -5,7 +5,7 @@
 # table, size, threads, wall ms, CPU ms, evaluations, evaluations/s, estimated and measured
 # max error, peak RSS) followed by the targets. Progress goes to stderr.
 #
-#   scripts/bench.sh                      # everything (about a minute on 2 cores)
+#   scripts/bench.sh                      # everything (10–20 s on 2 cores once built)
 #   scripts/bench.sh --no-large           # the presets only
 #   scripts/bench.sh --runs 3 --no-error  # faster: fewer runs, no reference integrals
 #   scripts/bench.sh presets/filament-dfg.json
