@@ -18,9 +18,10 @@
 //!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, since round 11 from 1/40, see
 //!   [`PAIR_BANDS`]): 3.8 M / 5.4 M (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64)
 //!   on a grid of its own (5.6 M; by rows 7.1 M): a band goes on a grid where it holds at
-//!   least [`GRID_MIN_ROWS`] rows, else by rows; α < 1/256 always by rows (their rows are cheap and their columns are not): 2.3 M /
-//!   3.4 M. One grid over every roughness cost 19.8 M / 53.3 M: near grazing the split sum of
-//!   a narrow lobe changes on the scale of α itself.
+//!   least [`GRID_MIN_ROWS`] rows, else by rows; α < 1/256 always by rows (their rows are
+//!   cheap and their columns are not): 2.3 M / 3.4 M. One grid over every roughness cost
+//!   19.8 M / 53.3 M: near grazing the split sum of a narrow lobe changes on the scale of α
+//!   itself.
 //! - *Cloth, wide lobes* (1/16 ≤ α ≤ 1): a grid in (√μ, √α), whose kernel shares its node
 //!   data along a column ([`View`]): 3.6 M / 4.2 M (columns alone: 4.3 M / 17.4 M).
 //! - *Cloth, narrow lobes* (α < 1/16): by rows in √μ above μ = 0.04 and texel by texel below:
