@@ -2,6 +2,9 @@
 //! `eval`, `verify` — successes, exit codes (0 ok, 1 failed, 2 bad input) and the messages
 //! for bad paths, unreadable files and files brdfbake did not write.
 
+#[path = "common/judges.rs"]
+mod judges;
+
 use serde_json::Value;
 use std::fs;
 use std::path::Path;
@@ -650,13 +653,7 @@ fn report_is_self_contained_and_renders() {
     let o = bin(d, &["report", "tiny.json", "--out", "file/rep"]);
     assert_eq!(o.status.code(), Some(1), "{:?}", text(&o));
 
-    let chromium = Command::new("sh")
-        .args(["-c", "command -v chromium"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !chromium {
-        eprintln!("chromium not installed: the browser check is skipped (.ci/run installs it)");
+    if !judges::chromium() {
         return;
     }
     let profile = tempfile::tempdir().unwrap();
