@@ -96,6 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         formats: vec![],
         scale: 1.0,
         layout_3d: Layout3d::Volume,
+        accept_error_estimate: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");

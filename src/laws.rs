@@ -23,6 +23,7 @@
 //! estimates are summed into the reported error.
 
 use crate::integrate::adaptive::{integrate, Tolerance};
+use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use crate::integrate::hemisphere::tan_theta_h_max;
 use crate::model::classic::{dir, Dir, Reflectance};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -44,7 +45,21 @@ fn rot_z(w: Dir, (s, c): (f64, f64)) -> Dir {
 /// `∫ f(ωi, ωo) cos θo dωo` for ωi at polar angle `theta_i` ∈ [0, π/2) and azimuth `phi_i`,
 /// to the absolute tolerance `tol` (estimated); see the module documentation.
 /// The tolerance is raised to the model's [`Reflectance::tolerance_floor`].
+/// All its integrals share one budget of
+/// [`INTEGRAL_EVAL_BUDGET`](crate::integrate::budget::INTEGRAL_EVAL_BUDGET) evaluations
+/// (≈ 1 s): an integrand that cannot reach `tol` stops there and reports the error reached.
 pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f64) -> Albedo {
+    with_budget(INTEGRAL_EVAL_BUDGET, || {
+        directional_albedo_unbounded(m, theta_i, phi_i, tol)
+    })
+}
+
+fn directional_albedo_unbounded(
+    m: &dyn Reflectance,
+    theta_i: f64,
+    phi_i: f64,
+    tol: f64,
+) -> Albedo {
     let tol = tol.max(m.tolerance_floor());
     let mu = theta_i.cos().clamp(0.0, 1.0);
     if mu <= 0.0 {
@@ -128,8 +143,13 @@ pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f6
 
 /// The albedo averaged over the incoming azimuth, `(1/2π)∫ E(θi, φ) dφ`, by adaptive
 /// Gauss–Kronrod over φ ∈ [0, π/2] (enough by the symmetry stated in the module
-/// documentation); the error adds the outer estimate and the largest per-node estimate.
+/// documentation); the error adds the outer estimate and the largest per-node estimate. Every
+/// albedo it takes shares one budget, as in [`directional_albedo`].
 pub fn azimuth_averaged_albedo(m: &dyn Reflectance, theta_i: f64, tol: f64) -> Albedo {
+    with_budget(INTEGRAL_EVAL_BUDGET, || azimuth_average(m, theta_i, tol))
+}
+
+fn azimuth_average(m: &dyn Reflectance, theta_i: f64, tol: f64) -> Albedo {
     if m.isotropic() {
         return directional_albedo(m, theta_i, 0.0, tol);
     }

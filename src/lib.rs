@@ -36,6 +36,7 @@ pub mod lut;
 pub mod merl;
 pub mod meta;
 pub mod model;
+pub mod numfmt;
 pub mod pipeline;
 pub mod preset;
 pub mod presets;

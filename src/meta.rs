@@ -43,6 +43,10 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(c) = &m.classic {
         v["model"]["classic"] = json!(c);
     }
+    // (only when set, so that tables without it keep their hash)
+    if let Some(a) = table.accept_error_estimate {
+        v["accept_error_estimate"] = json!(a);
+    }
     v
 }
 
@@ -338,6 +342,18 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             ny = dims[1]
         ));
     }
+    let mut quadrature = json!({
+        "method": method,
+        "tolerance": spec.tolerance,
+        "estimated_max_error": err,
+        "evaluations": lut.evaluations,
+    });
+    if let Some(a) = table.accept_error_estimate {
+        quadrature["accept_error_estimate"] = json!(a);
+        quadrature["accept_error_estimate_meaning"] = json!(
+            "the preset accepts per-texel error estimates up to this value, above its tolerance; estimated_max_error is at most this"
+        );
+    }
     json!({
         "schema": SCHEMA,
         "generator": {"name": "brdfbake", "version": VERSION},
@@ -368,12 +384,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
                 "orientation": "KTXorientation rd (1D, 2D and 2D arrays) / rdi (3D textures): the first row is y = 0",
             },
         },
-        "quadrature": {
-            "method": method,
-            "tolerance": spec.tolerance,
-            "estimated_max_error": err,
-            "evaluations": lut.evaluations,
-        },
+        "quadrature": quadrature,
         "files": files.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
     })
 }

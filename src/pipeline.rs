@@ -35,6 +35,10 @@ pub enum PipelineError {
     /// The environment failed: disk, permissions (exit code 1).
     #[error("{0}")]
     Environment(String),
+    /// The bake ran but its result cannot be trusted or was not finished: an error estimate
+    /// over the tolerance, the time limit (exit code 1).
+    #[error("{0}")]
+    Failed(String),
 }
 
 /// The files a preset's table goes to: `<out>/<preset>/<table>.<ext>`.
@@ -110,13 +114,21 @@ pub fn bake_preset_until(
     let mut files = Vec::new();
     for t in &preset.tables {
         let start = Instant::now();
-        let mut lut = crate::table::bake_until(&t.spec, deadline).map_err(|e| match e {
-            crate::table::BakeError::TimeLimit { .. } => {
-                PipelineError::Environment(format!("preset {}: {e}", preset.name))
+        let opts = crate::table::BakeOptions {
+            deadline,
+            accept_error_estimate: t.accept_error_estimate,
+        };
+        let mut lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
+            crate::table::BakeError::TimeLimit { .. }
+            | crate::table::BakeError::ToleranceMissed { .. } => {
+                PipelineError::Failed(format!("preset {}: {e}", preset.name))
             }
             _ => PipelineError::Input(format!("preset {}: {e}", preset.name)),
         })?;
         let elapsed = start.elapsed();
+        check_underflow(t, &lut).map_err(|m| {
+            PipelineError::Input(format!("preset {}: table {}: {m}", preset.name, t.spec.name))
+        })?;
         if t.scale != 1.0 {
             for v in lut.data.iter_mut() {
                 *v = (*v as f64 * t.scale) as f32;
@@ -160,6 +172,57 @@ pub fn bake_preset_until(
         });
     }
     Ok((baked, files))
+}
+
+/// Refuses a table whose stored values (value × scale, rounded to the storage type) lose
+/// more than the storage's own rounding plus the tolerance: a scale so small that texels
+/// underflow to zero or to a few subnormal bits (`"scale": 5e-324`, or f16 with 1e-8) would
+/// otherwise write a table of zeros. Overflow (f16 above 65504) is the encoders' error.
+///
+/// Bound per texel: |stored/scale − value| ≤ ε·|value| + tolerance, with ε the storage's
+/// relative rounding (2^-11 for f16, 2^-24 for f32; the value is already f32) and 2^-20
+/// of slack for the division by the scale. Without a scale this always holds: f16 rounds to
+/// at most 2^-25 ≈ 3e-8 absolute below its normal range, under the smallest tolerance
+/// that values near there can meet.
+fn check_underflow(t: &PresetTable, lut: &Lut) -> Result<(), String> {
+    let (eps, name) = match t.spec.storage {
+        Storage::F16 => (2f64.powi(-11), "f16"),
+        Storage::F32 => (2f64.powi(-24), "f32"),
+    };
+    let nc = lut.channels.len().max(1);
+    for (k, &v) in lut.data.iter().enumerate() {
+        let v = v as f64;
+        let scaled = (v * t.scale) as f32;
+        let stored = match t.spec.storage {
+            Storage::F16 => half::f16::from_f32(scaled).to_f32(),
+            Storage::F32 => scaled,
+        };
+        if !stored.is_finite() {
+            continue; // overflow: reported by the encoders (f16) or below (f32)
+        }
+        let back = stored as f64 / t.scale;
+        let err = (back - v).abs();
+        let allowed = (eps * (1.0 + 2f64.powi(-20))) * v.abs() + t.spec.tolerance;
+        if err > allowed {
+            let t0 = k / nc;
+            let (nx, ny) = (lut.dim(0), lut.dim(1));
+            let texel = [t0 % nx, (t0 / nx) % ny, t0 / (nx * ny)];
+            let texel = &texel[..lut.axes.len()];
+            let n = crate::numfmt::num;
+            return Err(format!(
+                "scale {} makes texel {texel:?} (channel {}, value {}) underflow {name}: it is stored as {} and reads back as {}, off by {} (more than {name} rounding plus the tolerance, {}); raise \"scale\"{}",
+                n(t.scale),
+                lut.channels[k % nc].name,
+                n(v),
+                n(stored as f64),
+                n(back),
+                n(err),
+                n(allowed),
+                if t.spec.storage == Storage::F16 { " or use \"storage\": \"f32\"" } else { "" },
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Writes a set of encoded files atomically: every file is written to a temporary file

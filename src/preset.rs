@@ -114,6 +114,10 @@ pub struct PresetTable {
     /// metadata tells the shader to divide by it.
     pub scale: f64,
     pub layout_3d: Layout3d,
+    /// The largest per-texel quadrature error estimate the preset accepts, when it accepts
+    /// more than its tolerance (`accept_error_estimate`; recorded in the sidecar). `None`:
+    /// a texel whose estimate exceeds the tolerance fails the bake.
+    pub accept_error_estimate: Option<f64>,
 }
 
 /// Why a preset was rejected.
@@ -165,6 +169,8 @@ struct RawTable {
     scale: Option<f64>,
     #[serde(default)]
     layout_3d: Option<Layout3d>,
+    #[serde(default)]
+    accept_error_estimate: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -378,6 +384,25 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 ),
             ));
         }
+        for (k, f) in formats.iter().enumerate() {
+            if formats[..k].contains(f) {
+                return Err(field(
+                    at(&format!("formats[{k}]")),
+                    format!("{:?} is listed twice; list each format once", f.name()),
+                ));
+            }
+        }
+        if let Some(a) = t.accept_error_estimate {
+            if !(a.is_finite() && a >= spec.tolerance && a <= 1.0) {
+                return Err(field(
+                    at("accept_error_estimate"),
+                    format!(
+                        "must be a number in [tolerance, 1] = [{:e}, 1] (the largest per-texel error estimate accepted), got {a:e}",
+                        spec.tolerance
+                    ),
+                ));
+            }
+        }
         let scale = t.scale.unwrap_or(1.0);
         if !(scale.is_finite() && scale > 0.0 && scale <= 1e30) {
             return Err(field(
@@ -393,6 +418,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             formats,
             scale,
             layout_3d: t.layout_3d.unwrap_or(Layout3d::Volume),
+            accept_error_estimate: t.accept_error_estimate,
         });
     }
     Ok(Preset {

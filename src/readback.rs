@@ -288,6 +288,9 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(s) = get(&["storage", "scale"]) {
         t.insert("scale".into(), s.clone());
     }
+    if let Some(a) = get(&["quadrature", "accept_error_estimate"]) {
+        t.insert("accept_error_estimate".into(), a.clone());
+    }
     if axes.len() == 3 {
         if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
             t.insert("layout_3d".into(), l.clone());
@@ -722,7 +725,8 @@ pub fn exact_at(
             .unwrap_or("")
             .replace(": texel 0 is at", ": the point is at")
             .replace("every texel needs", "the model needs")
-            .replace("a texel at cosine 0", "cosine 0");
+            .replace("a texel at cosine 0", "cosine 0")
+            .replace("start the range at", "give a cosine of");
         format!("no exact value there: {e}")
     })?;
     use crate::table::{albedo, dfg, local, TableKind};
@@ -739,7 +743,10 @@ pub fn exact_at(
             crate::table::classic::texel_fn(&spec)
         }
     };
-    let r = f([0, 0, 0]);
+    let r = crate::integrate::budget::with_budget(
+        crate::integrate::budget::INTEGRAL_EVAL_BUDGET,
+        || f([0, 0, 0]),
+    );
     Ok((r.value, r.error))
 }
 

@@ -112,6 +112,7 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         formats: vec![Format::H, Format::Rs, Format::Png],
         scale: 1.0,
         layout_3d: Layout3d::Volume,
+        accept_error_estimate: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((

@@ -1,7 +1,7 @@
 //! `brdfbake bake`: presets → textures.
 
 use super::CliError;
-use crate::pipeline::{bake_preset_until, write_files, PipelineError};
+use crate::pipeline::{bake_preset_until, write_files};
 use crate::preset::{self, Format, LoadError, Preset};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -205,10 +205,7 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     let deadline = crate::resources::Deadline::after(a.max_time);
     // Bake everything in memory first, then write all presets' files in one atomic set:
     // a failure anywhere leaves every previous output as it was.
-    let to_err = |e: PipelineError| match e {
-        PipelineError::Input(m) => CliError::input(m),
-        PipelineError::Environment(m) => CliError::env(m),
-    };
+    let to_err = CliError::from;
     let mut all_baked = Vec::new();
     let mut all_files = Vec::new();
     let progress = progress_bar(&a, &presets);

@@ -29,9 +29,9 @@ pub struct EvalArgs {
     /// What to compute.
     #[arg(value_enum)]
     pub quantity: EvalQuantity,
-    /// NDF: beckmann, ggx, gaussian, blinn-phong, charlie.
-    #[arg(long, default_value = "ggx")]
-    pub ndf: String,
+    /// NDF: beckmann, ggx (default), gaussian, blinn-phong, charlie. Not for sheen (Charlie).
+    #[arg(long)]
+    pub ndf: Option<String>,
     /// The NDF's alpha.
     #[arg(long, conflicts_with = "roughness")]
     pub alpha: Option<f64>,
@@ -44,13 +44,15 @@ pub struct EvalArgs {
     /// cos theta_l (G2 only).
     #[arg(long)]
     pub cos_theta_l: Option<f64>,
-    /// Masking: none, v-groove, smith-separable, smith-height-correlated, ashikhmin.
-    #[arg(long, default_value = "smith-height-correlated")]
-    pub masking: String,
+    /// Masking of G2, E, E_avg and dfg: none, v-groove, smith-separable,
+    /// smith-height-correlated (default), ashikhmin.
+    #[arg(long)]
+    pub masking: Option<String>,
     /// Schlick Fresnel F0 for E and E_avg (default: F = 1).
     #[arg(long)]
     pub f0: Option<f64>,
-    /// Quadrature tolerance (estimated absolute error).
+    /// Quadrature tolerance (estimated absolute error), in [1e-12, 1e-2]; a result whose
+    /// estimate exceeds it is an error (exit 1).
     #[arg(long, default_value_t = 1e-10)]
     pub tolerance: f64,
     /// Print one JSON document instead of text.
@@ -80,11 +82,82 @@ fn cos_axis(name: &str, x: f64) -> Axis {
     }
 }
 
+/// The optional flags a quantity takes: (`--ndf`, `--masking`, `--cos-theta`,
+/// `--cos-theta-l`, `--f0`). A flag given to a quantity that does not take it is an error,
+/// not silently ignored.
+fn takes(q: EvalQuantity) -> [bool; 5] {
+    use EvalQuantity as Q;
+    match q {
+        Q::D | Q::G1 => [true, false, true, false, false],
+        Q::G2 => [true, true, true, true, false],
+        Q::E => [true, true, true, false, true],
+        Q::EAvg => [true, true, false, false, true],
+        Q::Dfg => [true, true, true, false, false],
+        Q::Sheen => [false, false, true, false, false],
+    }
+}
+
+fn quantity_name(q: EvalQuantity) -> String {
+    clap::ValueEnum::to_possible_value(&q)
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default()
+}
+
+/// Refuses flags that do not apply to `a.quantity`, naming them and why.
+fn check_flags(a: &EvalArgs) -> Result<(), CliError> {
+    let why = |flag: &str| -> String {
+        use EvalQuantity as Q;
+        match (a.quantity, flag) {
+            (Q::Sheen, "--ndf") => "sheen is always Charlie's NDF".into(),
+            (Q::Sheen, "--masking") => "sheen is always Ashikhmin's visibility".into(),
+            (Q::D, "--masking") => "D has no masking term".into(),
+            (Q::G1, "--masking") => "G1 is Smith's, from the NDF alone".into(),
+            (Q::EAvg, "--cos-theta") => "E_avg is averaged over every cos theta".into(),
+            (_, "--cos-theta-l") => "only g2 has a light direction".into(),
+            (Q::Dfg, "--f0") => "the split sum factors F0 out: E = F0 A + B".into(),
+            (_, "--f0") => "only e and e-avg take a Fresnel term".into(),
+            _ => "it has no such parameter".into(),
+        }
+    };
+    let given = [
+        a.ndf.is_some(),
+        a.masking.is_some(),
+        a.cos_theta.is_some(),
+        a.cos_theta_l.is_some(),
+        a.f0.is_some(),
+    ];
+    let flags = ["--ndf", "--masking", "--cos-theta", "--cos-theta-l", "--f0"];
+    for ((flag, g), t) in flags.iter().zip(given).zip(takes(a.quantity)) {
+        if g && !t {
+            return Err(CliError::input(format!(
+                "{flag} does not apply to `eval {}`: {}",
+                quantity_name(a.quantity),
+                why(flag)
+            )));
+        }
+    }
+    Ok(())
+}
+
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
-    let ndf: NdfKind = parse_named("--ndf", &a.ndf, &NdfKind::ALL.map(|n| n.name()).join(", "))?;
+    check_flags(&a)?;
+    use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
+    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&a.tolerance) {
+        return Err(CliError::input(format!(
+            "--tolerance must be in [{}, {}], got {}",
+            crate::numfmt::num(MIN_TOLERANCE),
+            crate::numfmt::num(MAX_TOLERANCE),
+            crate::numfmt::num(a.tolerance)
+        )));
+    }
+    let ndf: NdfKind = parse_named(
+        "--ndf",
+        a.ndf.as_deref().unwrap_or("ggx"),
+        &NdfKind::ALL.map(|n| n.name()).join(", "),
+    )?;
     let masking: Masking = parse_named(
         "--masking",
-        &a.masking,
+        a.masking.as_deref().unwrap_or("smith-height-correlated"),
         &Masking::ALL.map(|n| n.name()).join(", "),
     )?;
     let (q, r) = match (a.alpha, a.roughness) {
@@ -109,12 +182,17 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         )));
     }
     let need = |v: Option<f64>, flag: &str| -> Result<f64, CliError> {
-        v.filter(|x| x.is_finite()).ok_or_else(|| {
-            CliError::input(format!(
-                "{} needs {flag} (a cosine in [0, 1])",
-                format!("{:?}", a.quantity).to_lowercase()
-            ))
-        })
+        match v {
+            None => Err(CliError::input(format!(
+                "`eval {}` needs {flag} (a cosine in [0, 1])",
+                quantity_name(a.quantity)
+            ))),
+            Some(x) if !(0.0..=1.0).contains(&x) => Err(CliError::input(format!(
+                "{flag} {} is not a cosine: give a number in [0, 1]",
+                crate::numfmt::num(x)
+            ))),
+            Some(x) => Ok(x),
+        }
     };
     let rough = Axis {
         name: "roughness".into(),
@@ -223,6 +301,21 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let x: Vec<f64> = spec.axes.iter().map(|ax| ax.range[0]).collect();
     let (mut v, mut e) =
         crate::readback::exact_at(&spec, &x, a.tolerance).map_err(CliError::input)?;
+    if let Some(c) = v.iter().position(|x| !x.is_finite()) {
+        return Err(CliError::input(format!(
+            "the value is not finite there ({} in channel {c}): the model is undefined at this point",
+            v[c]
+        )));
+    }
+    if let Some(c) = e.iter().position(|x| !(*x <= a.tolerance)) {
+        return Err(CliError::env(format!(
+            "the quadrature's error estimate {} exceeds --tolerance {} (channel {c}, value {}): \
+             the integrand cannot be resolved to that accuracy here; raise --tolerance",
+            crate::numfmt::num(e[c]),
+            crate::numfmt::num(a.tolerance),
+            v[c]
+        )));
+    }
     let mut names: Vec<String> = crate::table::channels(&spec)
         .into_iter()
         .map(|c| c.name)

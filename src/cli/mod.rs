@@ -85,6 +85,16 @@ impl CliError {
     }
 }
 
+impl From<crate::pipeline::PipelineError> for CliError {
+    fn from(e: crate::pipeline::PipelineError) -> Self {
+        use crate::pipeline::PipelineError as P;
+        match e {
+            P::Input(m) => CliError::input(m),
+            P::Environment(m) | P::Failed(m) => CliError::env(m),
+        }
+    }
+}
+
 /// Runs the CLI and returns the process exit code.
 pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     let cli = match Cli::try_parse_from(args) {

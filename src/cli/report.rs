@@ -58,12 +58,7 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
         .map(|(label, d)| (label.as_str(), filament::compare(d, 1e-7)));
     let page = html(&tables, comparison.as_ref().map(|(label, c)| (*label, c)));
     let path = a.out.join("index.html");
-    crate::pipeline::write_files(&vec![(path.clone(), page.into_bytes())]).map_err(
-        |e| match e {
-            crate::pipeline::PipelineError::Input(m) => CliError::input(m),
-            crate::pipeline::PipelineError::Environment(m) => CliError::env(m),
-        },
-    )?;
+    crate::pipeline::write_files(&vec![(path.clone(), page.into_bytes())])?;
     if !a.quiet {
         println!("{} table(s) -> {}", tables.len(), path.display());
     }

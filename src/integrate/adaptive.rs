@@ -59,7 +59,8 @@ pub struct Tolerance {
     /// Evaluation budget: once spent, remaining panels are accepted as they are (their
     /// error estimates still count), so a pathological integrand costs bounded time and
     /// reports a large error instead of hanging. The traversal order is fixed, so where the
-    /// budget runs out is deterministic too.
+    /// budget runs out is deterministic too. Nested integrals also share the thread's
+    /// [`budget`](super::budget) scope, which stops every rule the same way.
     pub max_evals: u64,
 }
 
@@ -118,8 +119,14 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
 ) {
     let (floor, budget) = (lim.floor, lim.budget);
     let e = panel(f, a, b);
+    super::budget::charge(e.evals);
     let err = e.max_error();
-    if depth == 0 || err <= tol || err <= floor * (b - a) || !err.is_finite() || out.evals >= budget
+    if depth == 0
+        || err <= tol
+        || err <= floor * (b - a)
+        || !err.is_finite()
+        || out.evals >= budget
+        || super::budget::exhausted()
     {
         out.add(&e);
         return;

@@ -3,6 +3,7 @@
 //! reflectance integral. This folder knows integrands, not tables.
 
 pub mod adaptive;
+pub mod budget;
 pub mod cc1d;
 pub mod chebyshev;
 pub mod classic_lobes;

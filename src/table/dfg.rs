@@ -261,10 +261,12 @@ pub(super) fn cloth_sample((v, e, n): (f64, f64, u64)) -> interp1d::Sample {
 /// A whole table as it is stored, without per-texel allocations: channel c of texel t
 /// (axis 0 fastest) at `data[t·channels + c]` (f32), the largest error estimate of each
 /// channel, and the first texel (lowest index t, then channel) whose value is not finite in
-/// f64 or f32, with that value.
+/// f64 or f32, with that value, and the texels that missed the accepted error estimate.
 pub(crate) struct Dense {
     pub data: Vec<f32>,
     pub max_error: Vec<f64>,
     pub evals: u64,
     pub non_finite: Option<(usize, usize, f64)>,
+    /// The texels whose estimate exceeds the accepted one (texel index t).
+    pub misses: super::Misses,
 }

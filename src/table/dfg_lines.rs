@@ -583,8 +583,8 @@ fn positions<'a>(
 /// Results in texel order (μ fastest), as stored (f32), without per-texel allocations.
 /// `stop()` true makes every remaining sample a cheap zero (the caller then discards the
 /// table).
-pub(crate) fn bake(spec: &TableSpec, stop: Stop) -> Option<Dense> {
-    bake_with(spec, stop, false).map(|(d, _)| d)
+pub(crate) fn bake(spec: &TableSpec, stop: Stop, limit: f64) -> Option<Dense> {
+    bake_with(spec, stop, false, limit).map(|(d, _)| d)
 }
 
 /// Each texel's f64 values and their estimates, `(value, error)` in texel order.
@@ -592,7 +592,13 @@ type Detail = (Vec<f64>, Vec<f64>);
 
 /// [`bake`], and with `detail` each texel's f64 values and estimates too (`(value, error)`
 /// in texel order, 3 channels; the tests).
-fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Option<Detail>)> {
+/// `limit`: the largest accepted error estimate (texels above it are collected as misses).
+fn bake_with(
+    spec: &TableSpec,
+    stop: Stop,
+    detail: bool,
+    limit: f64,
+) -> Option<(Dense, Option<Detail>)> {
     if !interpolated(spec) {
         return None;
     }
@@ -764,13 +770,20 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
     };
     // (per row: the largest error of each channel, the first non-finite value)
     let mut data = vec![0.0f32; nx * ny * nch];
-    type Row = ([f64; 3], Option<(usize, usize, f64)>, Vec<f64>, Vec<f64>);
+    type Row = (
+        [f64; 3],
+        Option<(usize, usize, f64)>,
+        Vec<f64>,
+        Vec<f64>,
+        super::Misses,
+    );
     let rows: Vec<Row> = data
         .par_chunks_mut(nx * nch)
         .enumerate()
         .map(|(j, row)| {
             let mut max_error = [0.0f64; 3];
             let mut non_finite = None;
+            let mut misses = super::Misses::default();
             let n_detail = if detail { nx * nch } else { 0 };
             let (mut dv, mut de) = (vec![0.0; n_detail], vec![0.0; n_detail]);
             let mut put = |i: usize, c: usize, v: f64, e: f64| {
@@ -786,6 +799,7 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
                 }
                 row[i * nch + c] = v as f32;
                 max_error[c] = max_error[c].max(e);
+                misses.check(limit, j * nx + i, c, e);
             };
             let pair = pair_src(j);
             for i in 0..nx {
@@ -809,7 +823,7 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
                     put(i, 2, l.value[at], l.error[at]);
                 }
             }
-            (max_error, non_finite, dv, de)
+            (max_error, non_finite, dv, de, misses)
         })
         .collect();
     let mut max_error = vec![0.0f64; nch];
@@ -829,11 +843,16 @@ fn bake_with(spec: &TableSpec, stop: Stop, detail: bool) -> Option<(Dense, Optio
         let error = rows.iter().flat_map(|r| r.3.iter().copied()).collect();
         (value, error)
     });
+    let mut misses = super::Misses::default();
+    for r in rows {
+        misses.merge(r.4);
+    }
     let out = Dense {
         data,
         max_error,
         evals,
         non_finite,
+        misses,
     };
     Some((out, detail))
 }
@@ -938,7 +957,7 @@ mod tests {
     fn check_lines(s: &TableSpec, cols: &[usize], rows: &[usize]) {
         let tol = s.tolerance;
         let (nx, ny) = (s.axes[0].size, s.axes[1].size);
-        let (table, detail) = bake_with(s, &|| false, true).expect("a GGX dfg table goes by lines");
+        let (table, detail) = bake_with(s, &|| false, true, f64::INFINITY).expect("a GGX dfg table goes by lines");
         let (value, error) = detail.expect("asked for");
         let ctx = Ctx::new(s);
         let (mut checked, mut texel_evals) = (0u64, 0u64);
@@ -1033,7 +1052,7 @@ mod tests {
     fn short_lines_are_the_column_values() {
         for (nx, short) in [(40, false), (8, true)] {
             let s = spec(nx, [0.1, 0.9], 3, true, 1e-7);
-            let (_, detail) = bake_with(&s, &|| false, true).expect("by lines");
+            let (_, detail) = bake_with(&s, &|| false, true, f64::INFINITY).expect("by lines");
             let (value, error) = detail.expect("asked for");
             let column = super::super::dfg::column_fn(&s);
             for i in 0..nx {

@@ -16,7 +16,9 @@ pub mod spec;
 
 pub use spec::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 
+use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use crate::lut::{Channel, Lut};
+use crate::numfmt::num;
 use rayon::prelude::*;
 
 /// Why a bake failed.
@@ -34,13 +36,136 @@ pub enum BakeError {
         seconds: f64,
         texels: usize,
     },
-    #[error("table {name:?}: texel {texel:?} is not finite ({value}) in channel {channel}")]
+    #[error("{}", tolerance_message(name, *limit, *tolerance, *count, *texels, worst))]
+    ToleranceMissed {
+        name: String,
+        /// The largest accepted estimate (the tolerance, or the preset's
+        /// `accept_error_estimate`).
+        limit: f64,
+        tolerance: f64,
+        /// Texel channels whose estimate exceeds `limit`.
+        count: usize,
+        texels: usize,
+        /// The largest of them, largest first (at most [`MISSES_SHOWN`]).
+        worst: Vec<Miss>,
+    },
+    #[error(
+        "table {name:?}: channel {channel} of texel {:?} ({}) is not finite ({value}{}): the model is undefined or \
+         overflows there; move the axis range away from that point{}",
+        &texel[..at.len()],
+        at.iter().map(|(a, x)| format!("{a}={}", num(*x))).collect::<Vec<_>>().join(", "),
+        if value.is_finite() { ", beyond f32" } else { "" },
+        if value.is_finite() { " or lower the values with a \"scale\"" } else { "" }
+    )]
     NonFinite {
         name: String,
         texel: [usize; 3],
+        /// Each axis' name and the texel's coordinate on it.
+        at: Vec<(String, f64)>,
         channel: String,
         value: f64,
     },
+}
+
+/// How many of the texels that missed the tolerance an error names.
+pub const MISSES_SHOWN: usize = 5;
+
+/// A texel channel whose quadrature error estimate exceeds what the table accepts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Miss {
+    pub texel: [usize; 3],
+    /// Each axis' name and the texel's coordinate on it.
+    pub at: Vec<(String, f64)>,
+    pub channel: String,
+    pub estimate: f64,
+}
+
+fn tolerance_message(
+    name: &str,
+    limit: f64,
+    tolerance: f64,
+    count: usize,
+    texels: usize,
+    worst: &[Miss],
+) -> String {
+    let shown: Vec<String> = worst
+        .iter()
+        .map(|m| {
+            let at: Vec<String> = m.at.iter().map(|(a, x)| format!("{a}={}", num(*x))).collect();
+            format!(
+                "{} at texel {:?} ({}): {}",
+                m.channel,
+                &m.texel[..m.at.len()],
+                at.join(", "),
+                num(m.estimate)
+            )
+        })
+        .collect();
+    let bound = if limit > tolerance {
+        format!(
+            "the accepted estimate {} (accept_error_estimate; tolerance {})",
+            num(limit),
+            num(tolerance)
+        )
+    } else {
+        format!("its tolerance {}", num(tolerance))
+    };
+    format!(
+        "table {name:?}: the quadrature's error estimate exceeds {bound} in {count} texel channel(s) of \
+         {texels} texels; largest: {}. Nothing was written. The integrand cannot be resolved to that \
+         accuracy there: move the axis range away from it (cosines near 0, roughness near its limits), \
+         raise \"tolerance\", or accept the estimate explicitly with \"accept_error_estimate\" (recorded \
+         in the sidecar)",
+        shown.join("; ")
+    )
+}
+
+/// Collects the texel channels whose estimate exceeds `limit`: their count and the
+/// [`MISSES_SHOWN`] largest (ties: lowest texel index first, so the list is deterministic).
+#[derive(Debug, Default)]
+pub(crate) struct Misses {
+    pub count: usize,
+    /// (estimate, texel index, channel)
+    pub worst: Vec<(f64, usize, usize)>,
+}
+
+impl Misses {
+    /// Records channel `c` of texel `i` if `e` exceeds `limit` (or is NaN).
+    #[inline]
+    pub fn check(&mut self, limit: f64, i: usize, c: usize, e: f64) {
+        if e <= limit {
+            return;
+        }
+        self.count += 1;
+        let e = if e.is_nan() { f64::INFINITY } else { e };
+        self.worst.push((e, i, c));
+        if self.worst.len() > 4 * MISSES_SHOWN {
+            self.trim();
+        }
+    }
+
+    fn trim(&mut self) {
+        self.worst
+            .sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        self.worst.truncate(MISSES_SHOWN);
+    }
+
+    /// Adds another collection's misses.
+    pub fn merge(&mut self, o: Misses) {
+        self.count += o.count;
+        self.worst.extend(o.worst);
+        self.trim();
+    }
+}
+
+/// What a bake may do besides the spec itself.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BakeOptions<'a> {
+    /// Stop with [`BakeError::TimeLimit`] once this has passed (`bake --max-time`).
+    pub deadline: Option<&'a crate::resources::Deadline>,
+    /// The largest per-texel error estimate accepted (default: the spec's tolerance); a
+    /// table with a larger one fails with [`BakeError::ToleranceMissed`].
+    pub accept_error_estimate: Option<f64>,
 }
 
 /// The result of one texel: a value and an error estimate per channel, and the
@@ -69,24 +194,41 @@ impl TexelResult {
 /// that one task integrates them together (`energy::fibre_fn`).
 pub(crate) type FibreFn = Box<dyn Fn(usize, usize) -> Vec<TexelResult> + Sync>;
 
-/// Bakes a table. Validates the spec first; never returns a table with NaN or Inf.
+/// Bakes a table. Validates the spec first; never returns a table with NaN or Inf, nor one
+/// whose quadrature error estimate exceeds the spec's tolerance at any texel.
 pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
-    bake_until(spec, None)
+    bake_with(spec, &BakeOptions::default())
 }
 
-/// [`bake`], giving up with [`BakeError::TimeLimit`] once `deadline` has passed (checked
-/// before every texel — every column of a dfg table, every fibre of a table with a fibre
-/// path —, so a bake overruns it by at most one texel, column or fibre per thread; a texel's
-/// hemisphere integral is itself bounded by
-/// [`TEXEL_EVAL_BUDGET`](crate::integrate::hemisphere::TEXEL_EVAL_BUDGET)).
+/// [`bake`] with a deadline.
 pub fn bake_until(
     spec: &TableSpec,
     deadline: Option<&crate::resources::Deadline>,
 ) -> Result<Lut, BakeError> {
+    bake_with(
+        spec,
+        &BakeOptions {
+            deadline,
+            ..Default::default()
+        },
+    )
+}
+
+/// [`bake`] with options: gives up with [`BakeError::TimeLimit`] once the deadline has passed (checked
+/// before every texel — every column of a dfg table, every fibre of a table with a fibre
+/// path —, so a bake overruns it by at most one texel, column or fibre per thread; every
+/// texel's integrals together are bounded by
+/// [`INTEGRAL_EVAL_BUDGET`] evaluations, see [`crate::integrate::budget`]).
+pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError> {
+    let deadline = opts.deadline;
     spec.validate().map_err(|msg| BakeError::Invalid {
         name: spec.name.clone(),
         msg,
     })?;
+    let limit = opts
+        .accept_error_estimate
+        .unwrap_or(spec.tolerance)
+        .max(spec.tolerance);
     let channels = channels(spec);
     let dims = [
         spec.axes.first().map_or(1, |a| a.size),
@@ -112,7 +254,7 @@ pub fn bake_until(
     // (GGX dfg tables go by lines instead, interpolated along rows and columns: dfg_lines, whose
     // dense result needs no per-texel allocation)
     let dense = if spec.kind == TableKind::Dfg {
-        dfg_lines::bake(spec, &out_of_time)
+        dfg_lines::bake(spec, &out_of_time, limit)
     } else {
         None
     };
@@ -136,7 +278,10 @@ pub fn bake_until(
                 if out_of_time() {
                     return Vec::new();
                 }
-                fibre(ij % dims[0], ij / dims[0])
+                // (every integral of the fibre shares one bounded budget: budget.rs)
+                with_budget(INTEGRAL_EVAL_BUDGET.saturating_mul(dims[2] as u64), || {
+                    fibre(ij % dims[0], ij / dims[0])
+                })
             })
             .collect()
     } else if by_column {
@@ -152,7 +297,9 @@ pub fn bake_until(
                 if out_of_time() {
                     return Vec::new();
                 }
-                column(i)
+                with_budget(INTEGRAL_EVAL_BUDGET.saturating_mul(dims[1] as u64), || {
+                    column(i)
+                })
             })
             .collect()
     } else {
@@ -179,7 +326,7 @@ pub fn bake_until(
                     (i / dims[0]) % dims[1],
                     i / (dims[0] * dims[1]),
                 ];
-                per_row(idx)
+                with_budget(INTEGRAL_EVAL_BUDGET, || per_row(idx))
             })
             .collect()]
     };
@@ -193,20 +340,51 @@ pub fn bake_until(
     // texel i (axis 0 fastest)
     let nc = channels.len();
     // the error for channel c of texel i, whose value is not finite in f64 or f32
+    let texel_of = |i: usize| [i % dims[0], (i / dims[0]) % dims[1], i / (dims[0] * dims[1])];
+    let coords_of = |texel: [usize; 3]| -> Vec<(String, f64)> {
+        spec.axes
+            .iter()
+            .enumerate()
+            .map(|(k, a)| (a.name.clone(), a.coord(texel[k])))
+            .collect()
+    };
     let non_finite = |i: usize, c: usize, value: f64| BakeError::NonFinite {
         name: spec.name.clone(),
-        texel: [
-            i % dims[0],
-            (i / dims[0]) % dims[1],
-            i / (dims[0] * dims[1]),
-        ],
+        texel: texel_of(i),
+        at: coords_of(texel_of(i)),
         channel: channels[c].name.clone(),
         value,
+    };
+    let missed = |m: Misses| -> Result<(), BakeError> {
+        if m.count == 0 {
+            return Ok(());
+        }
+        let mut m = m;
+        m.trim();
+        let worst = m
+            .worst
+            .iter()
+            .map(|&(estimate, i, c)| Miss {
+                texel: texel_of(i),
+                at: coords_of(texel_of(i)),
+                channel: channels[c].name.clone(),
+                estimate,
+            })
+            .collect();
+        Err(BakeError::ToleranceMissed {
+            name: spec.name.clone(),
+            limit,
+            tolerance: spec.tolerance,
+            count: m.count,
+            texels: n,
+            worst,
+        })
     };
     if let Some(d) = dense {
         if let Some((i, c, value)) = d.non_finite {
             return Err(non_finite(i, c, value));
         }
+        missed(d.misses)?;
         return Ok(Lut {
             axes: spec.axes.clone(),
             channels,
@@ -230,6 +408,7 @@ pub fn bake_until(
     let mut data = Vec::with_capacity(n * nc);
     let mut err = vec![0.0f64; nc];
     let mut evals = 0;
+    let mut misses = Misses::default();
     for i in 0..n {
         let (value, error, texel_evals) = result(i);
         for c in 0..nc {
@@ -239,9 +418,11 @@ pub fn bake_until(
             }
             data.push(v as f32);
             err[c] = err[c].max(error[c]);
+            misses.check(limit, i, c, error[c]);
         }
         evals += texel_evals;
     }
+    missed(misses)?;
     Ok(Lut {
         axes: spec.axes.clone(),
         channels,

@@ -195,6 +195,19 @@ pub struct TableSpec {
     pub tolerance: f64,
 }
 
+/// The smallest cosine accepted on an axis whose kind divides by it (albedo, dfg, …; see
+/// [`TableSpec::validate`]): these integrals reach their grazing limit long before (E at
+/// μ = 1e-12 equals its limit to 1e-12), while below ~1e-154 μ² underflows and the
+/// integrand is not finite.
+pub const MIN_COSINE: f64 = 1e-12;
+
+/// The tightest accepted quadrature tolerance: f64 sums of ~10⁴ terms of size ~1 carry
+/// rounding errors of ~1e-13, so a tighter estimate would be noise (and the rules would
+/// refine until their budgets run out).
+pub const MIN_TOLERANCE: f64 = 1e-12;
+/// The loosest accepted tolerance.
+pub const MAX_TOLERANCE: f64 = 1e-2;
+
 /// Limits on sizes, so a typo cannot ask for a terabyte.
 pub const MAX_AXIS_SIZE: usize = 4096;
 pub const MAX_TEXELS: usize = 1 << 24;
@@ -258,6 +271,18 @@ impl TableSpec {
                              it divides by {}); use the centers convention or a range starting above 0",
                             kind.name(),
                             if ax.name == "n_dot_h" { "n.h" } else { "n.v" }
+                        ));
+                    }
+                    if !zero_ok && ax.coord(0) < MIN_COSINE {
+                        return Err(format!(
+                            "{f}: texel 0 is at cosine {}, below the smallest accepted {} for {} tables (they divide by {}: \
+                             closer to grazing its angle's tangent passes 1e12, and in f64 the integrand overflows near 1e-154); \
+                             start the range at {} or above",
+                            crate::numfmt::num(ax.coord(0)),
+                            crate::numfmt::num(MIN_COSINE),
+                            kind.name(),
+                            if ax.name == "n_dot_h" { "n.h" } else { "n.v" },
+                            crate::numfmt::num(MIN_COSINE),
                         ));
                     }
                 }
@@ -330,7 +355,10 @@ impl TableSpec {
         if !(w.is_finite() && (0.0..=1.0).contains(&w)) {
             return Err(format!("model.diffuse must be a weight in [0, 1], got {w}"));
         }
-        if !(self.tolerance.is_finite() && self.tolerance >= 1e-12 && self.tolerance <= 1e-2) {
+        if !(self.tolerance.is_finite()
+            && self.tolerance >= MIN_TOLERANCE
+            && self.tolerance <= MAX_TOLERANCE)
+        {
             return Err(format!(
                 "tolerance must be in [1e-12, 1e-2], got {}",
                 self.tolerance

@@ -1,0 +1,53 @@
+//! Numbers in messages: short and exact enough to act on. `{}` prints an f64 with every
+//! digit its shortest round trip needs (`1e300` as 301 digits, `1.7500000000000002e-9`);
+//! an error message needs the value a user typed or can compare, not its last bit.
+
+/// `x` with at most 6 significant digits: plain for 1e-4 ≤ |x| < 1e6, else scientific
+/// (`1.75e-9`, `1e300`, `0.25`, `inf`, `NaN`).
+pub fn num(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (1e-4..1e6).contains(&a) {
+        // 6 significant digits, trailing zeros dropped
+        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            return s.trim_end_matches('0').trim_end_matches('.').to_string();
+        }
+        return s;
+    }
+    let s = format!("{x:.5e}");
+    let (m, e) = s.split_once('e').expect("scientific");
+    let m = if m.contains('.') {
+        m.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        m
+    };
+    format!("{m}e{e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    #[test]
+    fn short_forms() {
+        assert_eq!(num(1.7500000000000002e-9), "1.75e-9");
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(-3.0), "-3");
+        assert_eq!(num(123456.7), "123457");
+        assert_eq!(num(1e6), "1e6");
+        assert_eq!(num(0.1 + 0.2), "0.3");
+        assert_eq!(num(5e-324), "4.94066e-324");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(num(f64::INFINITY), "inf");
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(1e-4), "0.0001");
+    }
+}
