@@ -29,6 +29,7 @@
 //! ```
 
 pub mod cli;
+pub mod digest;
 pub mod encode;
 pub mod integrate;
 pub mod laws;

@@ -145,24 +145,32 @@ pub fn bake_preset_until(
         }
         let attrs = meta::header_attributes(&preset.name, t, &lut);
         let mut names = Vec::new();
-        let mut paths = Vec::new();
+        let mut encoded_files = Vec::new();
         for f in formats.unwrap_or(&t.formats) {
             let encoded = encode(*f, t, &lut, &attrs)
                 .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
             for (suffix, bytes) in encoded {
                 let file = format!("{}.{}", t.spec.name, suffix);
-                let path = dir.join(&file);
-                names.push((suffix, file));
-                paths.push(path.clone());
-                files.push((path, bytes));
+                names.push((suffix, file.clone()));
+                encoded_files.push((file, bytes));
             }
         }
         let json = meta::metadata(&preset.name, t, &lut, &names);
-        let mut text = serde_json::to_string_pretty(&json).expect("metadata serializes");
-        text.push('\n');
+        // the sidecar lists every file's digest and seals itself (crate::digest)
+        let listed: Vec<(&str, &[u8])> = encoded_files
+            .iter()
+            .map(|(n, b)| (n.as_str(), b.as_slice()))
+            .collect();
+        let sidecar = crate::digest::seal(json, &listed);
+        let mut paths = Vec::new();
+        for (file, bytes) in encoded_files {
+            let path = dir.join(&file);
+            paths.push(path.clone());
+            files.push((path, bytes));
+        }
         let jpath = dir.join(format!("{}.json", t.spec.name));
         paths.push(jpath.clone());
-        files.push((jpath, text.into_bytes()));
+        files.push((jpath, sidecar));
         baked.push(BakedTable {
             preset: preset.name.clone(),
             table: t.spec.name.clone(),
@@ -239,7 +247,17 @@ pub fn write_files(files: &Files) -> Result<(), PipelineError> {
             ))
         })?;
     }
-    crate::write::write_all_atomic(files).map_err(|e| PipelineError::Environment(e.to_string()))
+    // sidecars last: every reader checks a texture against its sidecar's digest, so a set
+    // interrupted between renames is found (new textures beside old sidecars), and a
+    // sidecar is never newer than the files it lists
+    let is_sidecar = |p: &Path| p.extension().is_some_and(|e| e == "json");
+    let (sidecars, mut ordered): (Vec<_>, Vec<_>) = files
+        .iter()
+        .map(|(p, b)| (p.as_path(), b.as_slice()))
+        .partition(|(p, _)| is_sidecar(p));
+    ordered.extend(sidecars);
+    crate::write::write_all_atomic(&ordered)
+        .map_err(|e| PipelineError::Environment(e.to_string()))
 }
 
 /// Bakes a preset and writes its files atomically under `out`.

@@ -54,7 +54,9 @@ pub struct Readback {
     pub scale: f64,
 }
 
-fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
+/// Reads a regular file of at most [`MAX_FILE_BYTES`] (a FIFO, device or directory is an
+/// input error, never opened, so it cannot block or stream forever).
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
     let meta = std::fs::metadata(path).map_err(|e| {
         if e.kind() == std::io::ErrorKind::NotFound {
             ReadError::Input(format!("{}: no such file", path.display()))
@@ -134,6 +136,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
     };
     if let Some(sp) = &sidecar_path {
         let bytes = read_bytes(sp)?;
+        let sealed = crate::digest::check_seal(&bytes);
         let v: Value = serde_json::from_slice(&bytes).map_err(|e| {
             ReadError::Input(format!(
                 "{}: not a brdfbake sidecar: invalid JSON ({e})",
@@ -154,6 +157,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 meta::SCHEMA
             )));
         }
+        sealed.map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
         // `measured --out` tables have no preset table to rebuild (nor an input hash)
         let measured = v.pointer("/table/kind").and_then(Value::as_str)
             == Some(crate::cli::MEASURED_TABLE_KIND);
@@ -184,6 +188,18 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
     };
     if let Some(t) = texture {
         let bytes = read_bytes(&t)?;
+        if let Some(v) = &rb.sidecar {
+            let name = t.file_name().map(|n| n.to_string_lossy().into_owned());
+            crate::digest::check_file(v, name.as_deref().unwrap_or(""), &bytes).map_err(|e| {
+                ReadError::Input(format!(
+                    "{}: {e} (sidecar {})",
+                    t.display(),
+                    rb.sidecar_path
+                        .as_ref()
+                        .map_or(String::new(), |p| p.display().to_string())
+                ))
+            })?;
+        }
         let ext = ext_of(&t);
         let (lut, facts) = if ext == "exr" {
             read_exr(&t, &bytes, rb.table.as_ref())?
@@ -197,6 +213,18 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 .map(|(_, v)| v.clone());
             if let Some(s) = facts.iter().find(|(k, _)| k == "scale") {
                 rb.scale = s.1.parse().unwrap_or(1.0);
+            }
+        }
+        if let (Some(v), Some((_, h))) = (
+            &rb.sidecar,
+            facts.iter().find(|(k, _)| k == "input_hash"),
+        ) {
+            let want = v.get("input_hash").and_then(Value::as_str).unwrap_or("");
+            if h != want {
+                return Err(ReadError::Input(format!(
+                    "{}: its header's input hash {h} is not its sidecar's {want}: the texture was baked for another table",
+                    t.display()
+                )));
             }
         }
         rb.lut = Some(lut);

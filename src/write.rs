@@ -39,20 +39,34 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
 /// Atomically replaces (or creates) several files: first every temporary file is written
 /// and flushed, then all are renamed. A failure while writing changes no output file; the
 /// temporary files are always removed.
-pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> {
+///
+/// Files are renamed in the order given (the pipeline puts every sidecar last). Leftover
+/// temporary files of killed writers in the target directories are removed first
+/// ([`sweep_leftovers`]).
+pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(files: &[(P, B)]) -> Result<(), WriteError> {
+    let files: Vec<(&Path, &[u8])> = files
+        .iter()
+        .map(|(p, b)| (p.as_ref(), b.as_ref()))
+        .collect();
     for (i, (path, _)) in files.iter().enumerate() {
         if files[..i].iter().any(|(other, _)| other == path) {
-            return Err(WriteError::DuplicatePath(path.clone()));
+            return Err(WriteError::DuplicatePath(path.to_path_buf()));
         }
+    }
+    let mut dirs: Vec<&Path> = files.iter().map(|&(p, _)| parent(p)).collect();
+    dirs.sort();
+    dirs.dedup();
+    for d in dirs {
+        sweep_leftovers(d);
     }
 
     // A rename cannot replace a directory (or, portably, anything but a file): find that
     // before the first rename, so such a target fails the whole set with nothing replaced.
-    for (path, _) in files {
+    for &(path, _) in &files {
         if let Ok(m) = fs::symlink_metadata(path) {
             if !m.file_type().is_file() {
                 return Err(WriteError::Prepare {
-                    path: path.clone(),
+                    path: path.to_path_buf(),
                     source: io::Error::new(
                         io::ErrorKind::AlreadyExists,
                         format!(
@@ -66,7 +80,7 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> 
     }
 
     let mut temps: Vec<PathBuf> = Vec::with_capacity(files.len());
-    for (path, bytes) in files {
+    for &(path, bytes) in &files {
         match prepare(path, bytes) {
             Ok(tmp) => temps.push(tmp),
             Err(source) => {
@@ -74,7 +88,7 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> 
                     let _ = fs::remove_file(tmp);
                 }
                 return Err(WriteError::Prepare {
-                    path: path.clone(),
+                    path: path.to_path_buf(),
                     source,
                 });
             }
@@ -82,20 +96,20 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), WriteError> 
     }
 
     let mut committed: Vec<PathBuf> = Vec::with_capacity(files.len());
-    for (i, ((path, _), tmp)) in files.iter().zip(&temps).enumerate() {
+    for (i, (&(path, _), tmp)) in files.iter().zip(&temps).enumerate() {
         if let Err(source) = commit(tmp, path) {
             for tmp in &temps[i + 1..] {
                 let _ = fs::remove_file(tmp);
             }
             sync_dirs(&committed);
             return Err(WriteError::Commit {
-                path: path.clone(),
+                path: path.to_path_buf(),
                 source,
                 committed,
                 total: files.len(),
             });
         }
-        committed.push(path.clone());
+        committed.push(path.to_path_buf());
     }
     sync_dirs(&committed);
     Ok(())
@@ -118,23 +132,35 @@ fn parent(path: &Path) -> &Path {
 /// temporary file's path; on error no temporary file remains.
 fn prepare(path: &Path, bytes: &[u8]) -> io::Result<PathBuf> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
+    prepare_counted(path, bytes, &COUNTER)
+}
+
+/// [`prepare`] with the counter that numbers the temporary files.
+fn prepare_counted(path: &Path, bytes: &[u8], counter: &AtomicU64) -> io::Result<PathBuf> {
     let name = path.file_name().ok_or_else(|| {
         io::Error::new(
             io::ErrorKind::InvalidInput,
             format!("cannot write {}: not a file path", path.display()),
         )
     })?;
-    let tmp = parent(path).join(format!(
-        ".{}.tmp-{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let mut file = OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&tmp)
-        .map_err(|e| describe(e, "cannot create a temporary file for", path))?;
+    // `.<name>.tmp-<pid>-<n>`: a leftover of a killed process whose id this one reuses can
+    // hold the same name, so an existing one is skipped (create_new), never opened
+    let mut attempts = 0;
+    let (tmp, mut file) = loop {
+        let tmp = parent(path).join(format!(
+            ".{}{TEMP_MARK}{}-{}",
+            name.to_string_lossy(),
+            std::process::id(),
+            counter.fetch_add(1, Ordering::Relaxed)
+        ));
+        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(f) => break (tmp, f),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempts < 1000 => {
+                attempts += 1;
+            }
+            Err(e) => return Err(describe(e, "cannot create a temporary file for", path)),
+        }
+    };
     let written = file.write_all(bytes).and_then(|()| file.sync_all());
     drop(file);
     if let Err(e) = written {
@@ -142,6 +168,66 @@ fn prepare(path: &Path, bytes: &[u8]) -> io::Result<PathBuf> {
         return Err(describe(e, "cannot write", path));
     }
     Ok(tmp)
+}
+
+/// What marks our temporary files: `.<name>.tmp-<pid>-<n>`.
+const TEMP_MARK: &str = ".tmp-";
+
+/// The process id in a temporary file's name, if it is one of ours.
+fn temp_owner(file_name: &str) -> Option<u32> {
+    let rest = file_name.strip_prefix('.')?;
+    let at = rest.rfind(TEMP_MARK)?;
+    let (pid, n) = rest[at + TEMP_MARK.len()..].split_once('-')?;
+    if rest[..at].is_empty() || n.is_empty() || !n.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    pid.parse().ok()
+}
+
+/// Whether process `pid` is alive (on Unix; elsewhere every owner counts as alive, so
+/// nothing is removed).
+fn alive(pid: u32) -> bool {
+    #[cfg(unix)]
+    {
+        if pid == std::process::id() {
+            return true;
+        }
+        let Ok(p) = libc::pid_t::try_from(pid) else {
+            return false;
+        };
+        // SAFETY: signal 0 only checks that the process exists and may be signalled.
+        let r = unsafe { libc::kill(p, 0) };
+        r == 0 || io::Error::last_os_error().raw_os_error() == Some(libc::EPERM)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = pid;
+        true
+    }
+}
+
+/// Removes the temporary files that killed writers left in `dir` (ours by name, their
+/// process gone); a file whose process still runs — another bake writing there now — is
+/// kept. Best effort: what cannot be removed stays (it is never read). Returns how many
+/// were removed.
+pub fn sweep_leftovers(dir: &Path) -> usize {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return 0;
+    };
+    let mut removed = 0;
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let Some(pid) = name.to_str().and_then(temp_owner) else {
+            continue;
+        };
+        if alive(pid) || !e.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
+        if fs::remove_file(e.path()).is_ok() {
+            removed += 1;
+        }
+    }
+    removed
 }
 
 /// Renames the finished temporary file over `path`; removes it if that fails.
@@ -274,6 +360,65 @@ mod tests {
             Err(WriteError::DuplicatePath(_))
         ));
         assert_eq!(fs::read(sub.join("b")).unwrap(), b"2");
+    }
+
+    #[test]
+    fn temporary_names_are_recognized() {
+        assert_eq!(temp_owner(".dfg.exr.tmp-123-4"), Some(123));
+        assert_eq!(temp_owner(".a.tmp-b.json.tmp-77-0"), Some(77));
+        for not_ours in [
+            "dfg.exr",
+            ".dfg.exr",
+            ".tmp-1-2",
+            ".x.tmp-1-",
+            ".x.tmp-a-1",
+            ".x.tmp-1-2b",
+            "x.tmp-1-2",
+        ] {
+            assert_eq!(temp_owner(not_ours), None, "{not_ours}");
+        }
+    }
+
+    /// Leftovers of a dead process are swept, a live process' and other files are kept, and
+    /// a leftover holding the name this process would use next is skipped, not reused.
+    #[test]
+    fn leftovers_are_swept_and_never_collide() {
+        let dir = tempfile::tempdir().unwrap();
+        // a process id that is not running: a child that has exited and been reaped
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let dead = child.id();
+        child.wait().unwrap();
+        let me = std::process::id();
+        for n in [
+            format!(".a.exr.tmp-{dead}-0"),
+            format!(".a.json.tmp-{dead}-7"),
+            format!(".a.exr.tmp-{me}-999"),
+            "keep.txt".into(),
+            ".hidden".into(),
+        ] {
+            fs::write(dir.path().join(n), b"x").unwrap();
+        }
+        assert_eq!(sweep_leftovers(dir.path()), 2);
+        let left = entries(dir.path());
+        assert!(left.contains(&format!(".a.exr.tmp-{me}-999")), "{left:?}");
+        assert!(left.contains(&"keep.txt".to_string()) && left.contains(&".hidden".to_string()));
+        // every name this process may pick next is taken: prepare skips them all
+        let path = dir.path().join("b.exr");
+        for n in 0..50 {
+            fs::write(dir.path().join(format!(".b.exr.tmp-{me}-{n}")), b"old").unwrap();
+        }
+        let counter = AtomicU64::new(0);
+        let tmp = prepare_counted(&path, b"new", &counter).unwrap();
+        assert_eq!(
+            tmp.file_name().unwrap().to_string_lossy(),
+            format!(".b.exr.tmp-{me}-50")
+        );
+        commit(&tmp, &path).unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"new");
+        for n in 0..50 {
+            let p = dir.path().join(format!(".b.exr.tmp-{me}-{n}"));
+            assert_eq!(fs::read(p).unwrap(), b"old", "a live process' file was touched");
+        }
     }
 
     /// A target that is a directory fails the whole set before anything is replaced.

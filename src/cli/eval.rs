@@ -347,18 +347,18 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             "values": names.iter().zip(&v).map(|(n, x)| (n.clone(), json!(x))).collect::<serde_json::Map<_, _>>(),
             "error_estimates": names.iter().zip(&e).map(|(n, x)| (n.clone(), json!(x))).collect::<serde_json::Map<_, _>>(),
         });
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")
         );
         return Ok(());
     }
-    println!("{model} at alpha = {alpha}");
+    outln!("{model} at alpha = {alpha}");
     for ((n, x), err) in names.iter().zip(&v).zip(&e) {
         if *err > 0.0 {
-            println!("{n} = {x:.15}  (estimated error {err:.1e})");
+            outln!("{n} = {x:.15}  (estimated error {err:.1e})");
         } else {
-            println!("{n} = {x:.15}");
+            outln!("{n} = {x:.15}");
         }
     }
     Ok(())

@@ -76,51 +76,51 @@ pub fn run(a: InspectArgs) -> Result<(), CliError> {
             "stats": stats,
             "notes": notes,
         });
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")
         );
         return Ok(());
     }
     if let Some(t) = &rb.texture {
-        println!(
+        outln!(
             "texture:   {} ({})",
             t.display(),
             rb.texture_format.unwrap_or("")
         );
     }
     match &rb.sidecar_path {
-        Some(p) => println!("sidecar:   {}", p.display()),
-        None => println!("sidecar:   none found (showing what the texture itself tells)"),
+        Some(p) => outln!("sidecar:   {}", p.display()),
+        None => outln!("sidecar:   none found (showing what the texture itself tells)"),
     }
     if let Some(p) = &rb.preset {
-        println!("preset:    {p}");
+        outln!("preset:    {p}");
     }
     if let Some(t) = &rb.table {
-        println!(
+        outln!(
             "table:     {} ({}: {})",
             t.spec.name,
             t.spec.kind.name(),
             t.spec.kind.description()
         );
-        println!("model:     {}", crate::meta::model_summary(&t.spec));
-        println!("storage:   {:?}, scale {}", t.spec.storage, t.scale);
+        outln!("model:     {}", crate::meta::model_summary(&t.spec));
+        outln!("storage:   {:?}, scale {}", t.spec.storage, t.scale);
     }
     if rb.table.is_none() {
         for (k, v) in &rb.file_facts {
-            println!("{k:<10} {v}");
+            outln!("{k:<10} {v}");
         }
     }
     if let Some(l) = &rb.lut {
-        println!("axes (u, v, w):");
+        outln!("axes (u, v, w):");
         for x in &l.axes {
-            println!("  {}", axis_line(x));
+            outln!("  {}", axis_line(x));
         }
     }
     if let Some(Value::Array(ch)) = s(&["channels"]) {
-        println!("channels:");
+        outln!("channels:");
         for c in ch {
-            println!(
+            outln!(
                 "  {} — {}",
                 c["name"].as_str().unwrap_or(""),
                 c["meaning"].as_str().unwrap_or("")
@@ -128,30 +128,30 @@ pub fn run(a: InspectArgs) -> Result<(), CliError> {
         }
     }
     if let Some(Value::String(r)) = s(&["reconstruction"]) {
-        println!("shader:    {r}");
+        outln!("shader:    {r}");
     }
     if let Some(Value::Object(e)) = s(&["quadrature", "estimated_max_error"]) {
         let parts: Vec<String> = e.iter().map(|(k, v)| format!("{k} {v}")).collect();
-        println!(
+        outln!(
             "estimated bake error (max abs per channel): {}",
             parts.join(", ")
         );
     }
     if let Some(st) = &stats {
-        println!("texels (stored values):");
-        println!(
+        outln!("texels (stored values):");
+        outln!(
             "  {:<12} {:>14} {:>14} {:>14} {:>5} {:>5}",
             "channel", "min", "max", "mean", "NaN", "Inf"
         );
         for c in st {
-            println!(
+            outln!(
                 "  {:<12} {:>14.8} {:>14.8} {:>14.8} {:>5} {:>5}",
                 c.name, c.min, c.max, c.mean, c.nan, c.inf
             );
         }
     }
     for n in &notes {
-        println!("note: {n}");
+        outln!("note: {n}");
     }
     Ok(())
 }

@@ -458,17 +458,17 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
                 })),
             }));
         } else {
-            println!("{}", text(m.as_ref(), &r, &e));
+            outln!("{}", text(m.as_ref(), &r, &e));
             if let Some(t) = &table {
                 let phis = crate::laws::incoming_phis_deg(m.isotropic());
                 let head: Vec<String> = phis.iter().map(|p| format!("phi {p}")).collect();
-                println!(
+                outln!(
                     "  E(mu): mu | {} | average over phi (+- error)",
                     head.join(" | ")
                 );
                 for r in t {
                     let cols: Vec<String> = r.albedo.iter().map(|x| format!("{x:.6}")).collect();
-                    println!(
+                    outln!(
                         "    {:.5} | {} | {:.6} (+- {:.1e})",
                         r.mu,
                         cols.join(" | "),
@@ -476,13 +476,13 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
                         r.error
                     );
                 }
-                println!();
+                outln!();
             }
         }
     }
     if a.json {
         let doc = json!({"schema": "brdfbake.laws/1", "models": docs});
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).map_err(|e| CliError::env(e.to_string()))?
         );

@@ -7,7 +7,7 @@ use crate::table::TableKind;
 pub struct ListArgs {}
 
 pub fn run(_: ListArgs) -> Result<(), CliError> {
-    println!("Presets:");
+    outln!("Presets:");
     let presets = super::bake::resolve(&[])?;
     for p in &presets {
         let tables: Vec<String> = p
@@ -23,11 +23,11 @@ pub fn run(_: ListArgs) -> Result<(), CliError> {
                 )
             })
             .collect();
-        println!("  {:<20} {}", p.name, tables.join(", "));
+        outln!("  {:<20} {}", p.name, tables.join(", "));
     }
-    println!("\nTable kinds:");
+    outln!("\nTable kinds:");
     for k in TableKind::ALL.into_iter().chain(TableKind::CLASSIC) {
-        println!(
+        outln!(
             "  {:<12} axes {:<40} {}",
             k.name(),
             k.axis_names().join(", "),

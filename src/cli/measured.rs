@@ -138,22 +138,22 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
                 "channels": fits_ct.iter().zip(names).map(|(f, n)| json!({"channel": n, "fit": f})).collect::<Vec<_>>(),
             },
         });
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).map_err(|e| CliError::env(e.to_string()))?
         );
         return Ok(());
     }
-    println!("{}", a.file.display());
+    outln!("{}", a.file.display());
     for (c, name) in names.iter().enumerate() {
-        println!(
+        outln!(
             "  {name}: {} unmeasured entries ({} of them above the horizon)",
             m.unmeasured[c], m.unmeasured_above_horizon[c]
         );
     }
-    println!("  directional albedo E(mu), R G B (+- error):");
+    outln!("  directional albedo E(mu), R G B (+- error):");
     for r in &table {
-        println!(
+        outln!(
             "    mu {:.5}: {:.6} {:.6} {:.6}  (+- {:.1e})",
             r.mu,
             r.albedo[0],
@@ -164,7 +164,7 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
     }
     for (f, n) in all_fits.iter().flat_map(|(_, fs)| fs.iter().zip(names)) {
         match f {
-            Some(f) => println!(
+            Some(f) => outln!(
                 "  fit {n}: {} + Lambert kd = {:.6}, f0 = {:.6}, alpha = {:.6}{}; rms {:.3e} (relative {:.3e}), max |error| {:.3e} over {} nodes",
                 match (f.ndf, f.masking) {
                     ("ggx", _) => "GGX",
@@ -180,7 +180,7 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
                 f.max_abs,
                 f.nodes
             ),
-            None => println!("  fit {n}: no measured node"),
+            None => outln!("  fit {n}: no measured node"),
         }
     }
     Ok(())

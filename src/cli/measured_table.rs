@@ -143,10 +143,9 @@ pub fn files(
         },
         "files": {"exr": exr_name},
     });
-    let mut text = serde_json::to_string_pretty(&sidecar).map_err(|e| e.to_string())?;
-    text.push('\n');
+    let sealed = crate::digest::seal(sidecar, &[(&exr_name, &exr)]);
     Ok(vec![
         (out.join(&exr_name), exr),
-        (out.join(format!("{name}.json")), text.into_bytes()),
+        (out.join(format!("{name}.json")), sealed),
     ])
 }

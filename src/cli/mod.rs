@@ -1,6 +1,15 @@
 //! Command-line interface: one file per command. Exit codes: 0 success, 1 failure of the
 //! environment (I/O), 2 bad input (arguments, presets).
 
+/// `println!` that returns a [`CliError`] (exit 1) when stdout cannot be written (a full
+/// disk, `> /dev/full`) instead of panicking. For functions returning `Result<_, CliError>`.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::cli::stdout_error)?
+    }};
+}
+
 mod bake;
 mod completions;
 mod eval;
@@ -95,13 +104,24 @@ impl From<crate::pipeline::PipelineError> for CliError {
     }
 }
 
+/// The error of a failed write to stdout.
+pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
+    CliError::env(format!("cannot write to stdout: {e}"))
+}
+
 /// Runs the CLI and returns the process exit code.
 pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
             let code = if e.use_stderr() { EXIT_INPUT } else { EXIT_OK };
-            let _ = e.print();
+            if let Err(w) = e.print() {
+                // --help or --version into a full stdout
+                if code == EXIT_OK {
+                    eprintln!("error: {}", stdout_error(w).msg);
+                    return EXIT_FAILURE;
+                }
+            }
             return code;
         }
     };

@@ -122,7 +122,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             "channels": ch,
             "notes": notes,
         });
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")
         );
@@ -134,13 +134,13 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         .zip(&x)
         .map(|(ax, v)| format!("{:.9}", ax.texture_coordinate(*v)))
         .collect();
-    println!("texture coordinates (u, v, w): ({})", tc.join(", "));
-    println!(
+    outln!("texture coordinates (u, v, w): ({})", tc.join(", "));
+    outln!(
         "{:<12} {:>20} {:>20} {:>12}",
         "channel", "GPU (filtered)", "exact", "difference"
     );
     for (c, ch) in lut.channels.iter().enumerate() {
-        println!(
+        outln!(
             "{:<12} {:>20.12} {:>20.12} {:>12.3e}",
             ch.name,
             gpu[c],
@@ -149,7 +149,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         );
     }
     for n in notes {
-        println!("note: {n}");
+        outln!("note: {n}");
     }
     Ok(())
 }

@@ -60,7 +60,7 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
     let path = a.out.join("index.html");
     crate::pipeline::write_files(&vec![(path.clone(), page.into_bytes())])?;
     if !a.quiet {
-        println!("{} table(s) -> {}", tables.len(), path.display());
+        outln!("{} table(s) -> {}", tables.len(), path.display());
     }
     Ok(())
 }

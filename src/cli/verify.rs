@@ -173,7 +173,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         let (n, errs) = verify_lut(spec, lut, *scale).map_err(CliError::input)?;
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;
         if !a.json {
-            println!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
+            outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
         }
         let mut chans = Vec::new();
         for (c, (e, idx, stored, exact)) in errs.iter().enumerate() {
@@ -183,7 +183,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 failed.push(format!("{label} {name}"));
             }
             if !a.json {
-                println!(
+                outln!(
                     "  {name:<12} max error {e:.3e} at texel {:?} (stored {stored:.12}, exact {exact:.12}) {}",
                     &idx[..lut.axes.len()],
                     if ok { "ok" } else { "OVER TOLERANCE" }
@@ -192,13 +192,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             chans.push(json!({"channel": name, "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "exact": exact, "ok": ok}));
         }
         if f16 && !a.json {
-            println!("  note: f16 storage rounds by up to 4.9e-4 relative; pass --tolerance 1e-3 to check such files");
+            outln!("  note: f16 storage rounds by up to 4.9e-4 relative; pass --tolerance 1e-3 to check such files");
         }
         docs.push(json!({"table": label, "texels_checked": n, "channels": chans}));
     }
     if a.json {
         let doc = json!({"tolerance": a.tolerance, "reference_tolerance": REFERENCE_TOLERANCE, "ok": failed.is_empty(), "tables": docs});
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")
         );
