@@ -50,8 +50,12 @@ pub fn seal(mut sidecar: Value, files: &[(&str, &[u8])]) -> Vec<u8> {
     let digest = sha256(text.as_bytes());
     let placeholder = format!("{}{ZEROS}", seal_key());
     debug_assert_eq!(text.matches(&placeholder).count(), 1);
-    text.replacen(&placeholder, &format!("{}{}", seal_key(), &digest[PREFIX.len()..]), 1)
-        .into_bytes()
+    text.replacen(
+        &placeholder,
+        &format!("{}{}", seal_key(), &digest[PREFIX.len()..]),
+        1,
+    )
+    .into_bytes()
 }
 
 /// Why a sidecar or a file does not match.
@@ -83,6 +87,10 @@ pub fn check_seal(bytes: &[u8]) -> Result<(), Mismatch> {
         .map(|(i, _)| i + key.len())
         .collect();
     let at = match found.as_slice() {
+        // the field is there but not as the bake wrote it: reformatted or edited
+        [] if contains(bytes, format!("\"{SEAL_FIELD}\"").as_bytes()) => {
+            return Err(Mismatch::SealBroken)
+        }
         [] => return Err(Mismatch::Unsealed),
         [at] => *at,
         _ => return Err(Mismatch::SealedTwice),
@@ -98,6 +106,10 @@ pub fn check_seal(bytes: &[u8]) -> Result<(), Mismatch> {
     } else {
         Err(Mismatch::SealBroken)
     }
+}
+
+fn contains(hay: &[u8], needle: &[u8]) -> bool {
+    hay.windows(needle.len()).any(|w| w == needle)
 }
 
 /// Checks a file's bytes against the digest its (sealed) sidecar lists for `name`.

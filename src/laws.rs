@@ -54,12 +54,7 @@ pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f6
     })
 }
 
-fn directional_albedo_unbounded(
-    m: &dyn Reflectance,
-    theta_i: f64,
-    phi_i: f64,
-    tol: f64,
-) -> Albedo {
+fn directional_albedo_unbounded(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f64) -> Albedo {
     let tol = tol.max(m.tolerance_floor());
     let mu = theta_i.cos().clamp(0.0, 1.0);
     if mu <= 0.0 {

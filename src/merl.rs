@@ -150,27 +150,13 @@ fn read_i32(b: &[u8], at: usize) -> i32 {
 impl Merl {
     /// Reads and validates a file (see [`Merl::parse`]).
     pub fn read(path: &Path) -> Result<Merl, MerlError> {
+        // (one byte more than a MERL file, so that trailing bytes are reported as such)
+        let bytes = crate::input::read_regular(path, FILE_BYTES as u64 + 1, "a MERL .binary file")
+            .map_err(|e| match e {
+                crate::input::InputError::Input(m) => MerlError::Format(m),
+                crate::input::InputError::Io(m) => MerlError::Io(m, std::io::ErrorKind::Other),
+            })?;
         let p = path.display();
-        let meta = std::fs::metadata(path).map_err(|e| {
-            if e.kind() == std::io::ErrorKind::NotFound {
-                MerlError::Io(format!("{p}: no such file"), e.kind())
-            } else {
-                MerlError::Io(format!("cannot read {p}: {e}"), e.kind())
-            }
-        })?;
-        if meta.is_dir() {
-            return Err(MerlError::Format(format!(
-                "{p}: is a directory; give a MERL .binary file"
-            )));
-        }
-        if meta.len() > FILE_BYTES as u64 + (1 << 20) {
-            return Err(MerlError::Format(format!(
-                "{p}: {} bytes; a MERL file has exactly {FILE_BYTES} bytes",
-                meta.len()
-            )));
-        }
-        let bytes = std::fs::read(path)
-            .map_err(|e| MerlError::Io(format!("cannot read {p}: {e}"), e.kind()))?;
         Merl::parse(&bytes).map_err(|m| MerlError::Format(format!("{p}: {m}")))
     }
 

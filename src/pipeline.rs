@@ -127,7 +127,10 @@ pub fn bake_preset_until(
         })?;
         let elapsed = start.elapsed();
         check_underflow(t, &lut).map_err(|m| {
-            PipelineError::Input(format!("preset {}: table {}: {m}", preset.name, t.spec.name))
+            PipelineError::Input(format!(
+                "preset {}: table {}: {m}",
+                preset.name, t.spec.name
+            ))
         })?;
         if t.scale != 1.0 {
             for v in lut.data.iter_mut() {
@@ -256,8 +259,7 @@ pub fn write_files(files: &Files) -> Result<(), PipelineError> {
         .map(|(p, b)| (p.as_path(), b.as_slice()))
         .partition(|(p, _)| is_sidecar(p));
     ordered.extend(sidecars);
-    crate::write::write_all_atomic(&ordered)
-        .map_err(|e| PipelineError::Environment(e.to_string()))
+    crate::write::write_all_atomic(&ordered).map_err(|e| PipelineError::Environment(e.to_string()))
 }
 
 /// Bakes a preset and writes its files atomically under `out`.

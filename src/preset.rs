@@ -430,41 +430,19 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
 
 /// Reads and parses a preset file (at most [`MAX_PRESET_BYTES`]).
 pub fn load(path: &Path) -> Result<Preset, LoadError> {
-    let meta = std::fs::metadata(path).map_err(|e| LoadError::Io(path.display().to_string(), e))?;
-    if meta.is_dir() {
+    if !path.exists() {
         return Err(LoadError::Input(format!(
-            "{}: is a directory, not a preset file",
+            "{}: no such preset file",
             path.display()
         )));
     }
-    if !meta.is_file() {
-        return Err(LoadError::Input(format!(
-            "{}: not a regular file (a device, FIFO or socket?); give a preset .json file",
-            path.display()
-        )));
-    }
-    let too_large = |len: u64| {
-        LoadError::Input(format!(
-            "{}: {len} bytes; presets are at most {MAX_PRESET_BYTES} bytes",
-            path.display(),
-        ))
-    };
-    if meta.len() > MAX_PRESET_BYTES {
-        return Err(too_large(meta.len()));
-    }
-    // read at most one byte past the limit: a file may grow, or (in /proc) report length 0
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| {
-            std::io::Read::read_to_end(
-                &mut std::io::Read::take(f, MAX_PRESET_BYTES + 1),
-                &mut bytes,
-            )
-        })
-        .map_err(|e| LoadError::Io(path.display().to_string(), e))?;
-    if bytes.len() as u64 > MAX_PRESET_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
+    let bytes =
+        crate::input::read_regular(path, MAX_PRESET_BYTES, "a preset .json file").map_err(|e| {
+            match e {
+                crate::input::InputError::Input(m) => LoadError::Input(m),
+                crate::input::InputError::Io(m) => LoadError::Unreadable(m),
+            }
+        })?;
     if bytes.starts_with(b"\xef\xbb\xbf") {
         return Err(LoadError::Input(format!(
             "{}: starts with a UTF-8 byte order mark (EF BB BF); save the preset as UTF-8 without BOM",
@@ -498,8 +476,9 @@ pub fn load(path: &Path) -> Result<Preset, LoadError> {
 pub enum LoadError {
     #[error("{0}")]
     Input(String),
-    #[error("cannot read {0}: {1}")]
-    Io(String, #[source] std::io::Error),
+    /// The file exists but could not be read (exit 1).
+    #[error("{0}")]
+    Unreadable(String),
 }
 
 /// Every place of the schema that holds an object must hold one (not an array).

@@ -57,45 +57,15 @@ pub struct Readback {
 /// Reads a regular file of at most [`MAX_FILE_BYTES`] (a FIFO, device or directory is an
 /// input error, never opened, so it cannot block or stream forever).
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
-    let meta = std::fs::metadata(path).map_err(|e| {
-        if e.kind() == std::io::ErrorKind::NotFound {
-            ReadError::Input(format!("{}: no such file", path.display()))
-        } else {
-            ReadError::Io(format!("cannot read {}: {e}", path.display()))
-        }
-    })?;
-    if meta.is_dir() {
-        return Err(ReadError::Input(format!(
-            "{}: is a directory; give a .exr, .ktx2 or .json file brdfbake wrote",
-            path.display()
-        )));
-    }
-    if !meta.is_file() {
-        return Err(ReadError::Input(format!(
-            "{}: not a regular file (a device, FIFO or socket?); give a .exr, .ktx2 or .json file brdfbake wrote",
-            path.display()
-        )));
-    }
-    let too_large = |len: u64| {
-        ReadError::Input(format!(
-            "{}: {len} bytes is larger than any table brdfbake writes",
-            path.display(),
-        ))
-    };
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(too_large(meta.len()));
-    }
-    // read at most one byte past the limit: a file may grow, or (in /proc) report length 0
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| {
-            std::io::Read::read_to_end(&mut std::io::Read::take(f, MAX_FILE_BYTES + 1), &mut bytes)
-        })
-        .map_err(|e| ReadError::Io(format!("cannot read {}: {e}", path.display())))?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
+    crate::input::read_regular(
+        path,
+        MAX_FILE_BYTES,
+        "a .exr, .ktx2 or .json file brdfbake wrote",
+    )
+    .map_err(|e| match e {
+        crate::input::InputError::Input(m) => ReadError::Input(m),
+        crate::input::InputError::Io(m) => ReadError::Io(m),
+    })
 }
 
 fn ext_of(path: &Path) -> String {
@@ -215,10 +185,9 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 rb.scale = s.1.parse().unwrap_or(1.0);
             }
         }
-        if let (Some(v), Some((_, h))) = (
-            &rb.sidecar,
-            facts.iter().find(|(k, _)| k == "input_hash"),
-        ) {
+        if let (Some(v), Some((_, h))) =
+            (&rb.sidecar, facts.iter().find(|(k, _)| k == "input_hash"))
+        {
             let want = v.get("input_hash").and_then(Value::as_str).unwrap_or("");
             if h != want {
                 return Err(ReadError::Input(format!(

@@ -43,7 +43,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
 /// Files are renamed in the order given (the pipeline puts every sidecar last). Leftover
 /// temporary files of killed writers in the target directories are removed first
 /// ([`sweep_leftovers`]).
-pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(files: &[(P, B)]) -> Result<(), WriteError> {
+pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(
+    files: &[(P, B)],
+) -> Result<(), WriteError> {
     let files: Vec<(&Path, &[u8])> = files
         .iter()
         .map(|(p, b)| (p.as_ref(), b.as_ref()))
@@ -417,7 +419,11 @@ mod tests {
         assert_eq!(fs::read(&path).unwrap(), b"new");
         for n in 0..50 {
             let p = dir.path().join(format!(".b.exr.tmp-{me}-{n}"));
-            assert_eq!(fs::read(p).unwrap(), b"old", "a live process' file was touched");
+            assert_eq!(
+                fs::read(p).unwrap(),
+                b"old",
+                "a live process' file was touched"
+            );
         }
     }
 

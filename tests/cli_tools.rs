@@ -207,13 +207,22 @@ fn inspect_without_sidecar_and_bad_files() {
     expect(&bin(d, &["inspect", "tiny.json"]), 2, "is a preset");
     fs::write(d.join("broken.json"), "{").unwrap();
     expect(&bin(d, &["inspect", "broken.json"]), 2, "invalid JSON");
-    // a sidecar edited so it describes no valid table
+    // a sidecar edited so it describes no valid table: its seal no longer matches
     let side = fs::read_to_string(d.join("out/tiny/e.json")).unwrap();
-    fs::write(
-        d.join("edited.json"),
-        side.replace("\"smith-height-correlated\"", "\"fancy\""),
-    )
-    .unwrap();
+    let edited = side.replace("\"smith-height-correlated\"", "\"fancy\"");
+    fs::write(d.join("edited.json"), &edited).unwrap();
+    expect(
+        &bin(d, &["inspect", "edited.json"]),
+        2,
+        "edited.json: its bytes do not match its sidecar_digest: it was edited",
+    );
+    // and sealed again (as no bake would write it), the table it describes is checked
+    let exr = fs::read(d.join("out/tiny/e.exr")).unwrap();
+    let resealed = brdfbake::digest::seal(
+        serde_json::from_str(&edited).unwrap(),
+        &[("e.exr", exr.as_slice())],
+    );
+    fs::write(d.join("edited.json"), resealed).unwrap();
     expect(
         &bin(d, &["inspect", "edited.json"]),
         2,
@@ -233,7 +242,7 @@ fn inspect_without_sidecar_and_bad_files() {
     expect(
         &bin(d, &["inspect", "lone.exr"]),
         2,
-        "does not match its sidecar",
+        "lone.exr: its sidecar lists no digest for it",
     );
 }
 
@@ -490,7 +499,21 @@ fn verify_files_and_presets() {
     let mut bytes = fs::read(d.join("out/tiny/env.ktx2")).unwrap();
     let n = bytes.len();
     bytes[n - 4..].copy_from_slice(&0.5f32.to_le_bytes());
-    fs::write(d.join("out/tiny/env.ktx2"), bytes).unwrap();
+    fs::write(d.join("out/tiny/env.ktx2"), &bytes).unwrap();
+    expect(
+        &bin(d, &["verify", "out/tiny/env.ktx2"]),
+        2,
+        "env.ktx2: its bytes do not match the digest in its sidecar",
+    );
+    // the same texel with a sidecar sealed over it (as no bake writes): the recomputed
+    // values find it
+    let side: Value =
+        serde_json::from_str(&fs::read_to_string(d.join("out/tiny/env.json")).unwrap()).unwrap();
+    fs::write(
+        d.join("out/tiny/env.json"),
+        brdfbake::digest::seal(side, &[("env.ktx2", bytes.as_slice())]),
+    )
+    .unwrap();
     expect(
         &bin(d, &["verify", "out/tiny/env.ktx2"]),
         1,
@@ -711,8 +734,9 @@ fn report_is_self_contained_and_renders() {
     assert_eq!(dom.matches("<svg").count(), html.matches("<svg").count());
 }
 
-/// A sidecar edited by hand (still a valid table) is read, and inspect and probe say that
-/// its input hash no longer matches.
+/// A sidecar edited by hand (still a valid table) is refused by every reader, naming the
+/// sidecar; sealed again over the edit (as no bake writes), it is read and inspect and probe
+/// say that its input hash no longer matches the table it describes.
 #[test]
 fn edited_sidecar_is_flagged() {
     let dir = baked();
@@ -722,21 +746,30 @@ fn edited_sidecar_is_flagged() {
     let mut v: Value = serde_json::from_str(&side).unwrap();
     v["quadrature"]["tolerance"] = serde_json::json!(1e-5);
     fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+    let probe = [
+        "probe",
+        "out/tiny/g1.exr",
+        "--at",
+        "cos_theta=0.5,roughness=0.5",
+    ];
+    for args in [&["inspect", "out/tiny/g1.exr", "--json"][..], &probe[..]] {
+        expect(
+            &bin(d, args),
+            2,
+            "g1.json: its bytes do not match its sidecar_digest",
+        );
+    }
+    // bake --check reports the table as damaged
+    fs::write(d.join("tiny.json"), TINY).unwrap();
+    let o = bin(d, &["bake", "tiny.json", "--check"]);
+    expect(&o, 1, "tiny/g1: out/tiny/g1.json: damaged");
+    // sealed over the edit
+    let exr = fs::read(d.join("out/tiny/g1.exr")).unwrap();
+    fs::write(&p, brdfbake::digest::seal(v, &[("g1.exr", exr.as_slice())])).unwrap();
     let o = bin(d, &["inspect", "out/tiny/g1.exr", "--json"]);
     let doc: Value = serde_json::from_str(&expect(&o, 0, "edited by hand")).unwrap();
     assert_eq!(doc["input_hash_consistent"], false);
-    let o = bin(
-        d,
-        &[
-            "probe",
-            "out/tiny/g1.exr",
-            "--at",
-            "cos_theta=0.5,roughness=0.5",
-        ],
-    );
-    expect(&o, 0, "does not match the table it describes");
-    // and bake --check reports the table as stale
-    fs::write(d.join("tiny.json"), TINY).unwrap();
+    expect(&bin(d, &probe), 0, "does not match the table it describes");
     let o = bin(d, &["bake", "tiny.json", "--check"]);
     expect(&o, 1, "tiny/g1");
 }

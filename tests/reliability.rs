@@ -613,7 +613,7 @@ const READBACK: &[(&str, &str, Damage, &[&str])] = &[
         "sidecar: table removed",
         "a.exr",
         |d| fs::write(d.join("a.json"), br#"{"schema": "brdfbake.lut/1"}"#).unwrap(),
-        &["a.json", "lacks table.name"],
+        &["a.json", "has no sidecar_digest"],
     ),
     (
         "sidecar: a size that disagrees with the texture",
@@ -623,7 +623,7 @@ const READBACK: &[(&str, &str, Damage, &[&str])] = &[
             let t = t.replacen("\"size\": 6", "\"size\": 7", 1);
             fs::write(d.join("a.json"), t).unwrap()
         },
-        &["a.exr"],
+        &["a.json", "do not match its sidecar_digest", "edited"],
     ),
 ];
 
@@ -651,8 +651,21 @@ fn corrupt_readback_files() {
                 args.extend(["--at", "cos_theta=0.5,roughness=0.5"]);
             }
             let o = run(work.path(), &args);
-            assert_fails(&o, INPUT, expect, &format!("{cmd} {name}"));
+            // a damaged texture beside its sidecar is found by the sidecar's digest first;
+            // alone, `inspect` reads it and the decoder says what is wrong
+            let texture = !name.starts_with("sidecar");
+            let with_sidecar: &[&str] = if texture {
+                &[file, "do not match the digest in its sidecar", "a.json"]
+            } else {
+                expect
+            };
+            assert_fails(&o, INPUT, with_sidecar, &format!("{cmd} {name}"));
             assert_eq!(snapshot(work.path()), before, "{cmd} {name}: files changed");
+            if texture && cmd == "inspect" {
+                fs::remove_file(work.path().join("a.json")).unwrap();
+                let o = run(work.path(), &args);
+                assert_fails(&o, INPUT, expect, &format!("{cmd} {name}, no sidecar"));
+            }
         }
     }
 }
@@ -670,7 +683,7 @@ fn memory_estimate_bounds_the_files_and_texels() {
       {"name": "dfg", "kind": "dfg", "layout": "filament", "cloth": true,
        "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
        "axes": {"cos_theta_v": {"size": 16}, "roughness": {"size": 12, "quantity": "perceptual"}}},
-      {"name": "d", "kind": "ndf", "storage": "f16", "scale": 0.01, "model": {"ndf": "ggx"},
+      {"name": "d", "kind": "ndf", "storage": "f16", "scale": 0.1, "model": {"ndf": "ggx"},
        "axes": {"cos_theta_h": {"size": 32}, "roughness": {"size": 8, "range": [0.3, 1], "quantity": "perceptual"}}},
       {"name": "g2", "kind": "g2", "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
        "axes": {"cos_theta_v": {"size": 8}, "cos_theta_l": {"size": 8}, "roughness": {"size": 8, "quantity": "alpha"}}},

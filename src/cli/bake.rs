@@ -119,6 +119,16 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
                     format!("stale: input hash {have} differs from the preset's {want} (preset changed or brdfbake version differs)"),
                 );
             }
+            // and it still describes what its hash says (a sealed sidecar no bake wrote)
+            if have == want {
+                match crate::readback::table_from_sidecar(&sidecar) {
+                    Ok(t2) if crate::meta::input_hash(&t2) == want => {}
+                    _ => bad(
+                        jpath.clone(),
+                        "the sidecar no longer describes its input hash: it was edited after the bake".into(),
+                    ),
+                }
+            }
             let files = sidecar.get("files");
             for key in expected_keys(t, formats.unwrap_or(&t.formats)) {
                 let name = format!("{}.{key}", t.spec.name);
@@ -310,10 +320,7 @@ pub const PRESET_DIR: &str = "presets";
 fn load(path: &Path) -> Result<Preset, CliError> {
     preset::load(path).map_err(|e| match e {
         LoadError::Input(m) => CliError::input(m),
-        LoadError::Io(p, e) if e.kind() == std::io::ErrorKind::NotFound => {
-            CliError::input(format!("{p}: no such preset file"))
-        }
-        e @ LoadError::Io(..) => CliError::env(e.to_string()),
+        LoadError::Unreadable(m) => CliError::env(m),
     })
 }
 

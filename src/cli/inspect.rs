@@ -141,12 +141,22 @@ pub fn run(a: InspectArgs) -> Result<(), CliError> {
         outln!("texels (stored values):");
         outln!(
             "  {:<12} {:>14} {:>14} {:>14} {:>5} {:>5}",
-            "channel", "min", "max", "mean", "NaN", "Inf"
+            "channel",
+            "min",
+            "max",
+            "mean",
+            "NaN",
+            "Inf"
         );
         for c in st {
             outln!(
                 "  {:<12} {:>14.8} {:>14.8} {:>14.8} {:>5} {:>5}",
-                c.name, c.min, c.max, c.mean, c.nan, c.inf
+                c.name,
+                c.min,
+                c.max,
+                c.mean,
+                c.nan,
+                c.inf
             );
         }
     }

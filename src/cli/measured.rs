@@ -148,7 +148,8 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
     for (c, name) in names.iter().enumerate() {
         outln!(
             "  {name}: {} unmeasured entries ({} of them above the horizon)",
-            m.unmeasured[c], m.unmeasured_above_horizon[c]
+            m.unmeasured[c],
+            m.unmeasured_above_horizon[c]
         );
     }
     outln!("  directional albedo E(mu), R G B (+- error):");

@@ -137,7 +137,10 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     outln!("texture coordinates (u, v, w): ({})", tc.join(", "));
     outln!(
         "{:<12} {:>20} {:>20} {:>12}",
-        "channel", "GPU (filtered)", "exact", "difference"
+        "channel",
+        "GPU (filtered)",
+        "exact",
+        "difference"
     );
     for (c, ch) in lut.channels.iter().enumerate() {
         outln!(

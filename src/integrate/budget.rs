@@ -101,7 +101,9 @@ mod tests {
         };
         let f = |x: f64| [(1.0 / x).sin() / x.sqrt()];
         let e = with_budget(10_000, || integrate(f, 1e-12, 1.0, tol));
-        assert!(e.evals <= 10_000 + 15, "{}", e.evals);
+        // past the budget, each pending panel of the depth-first recursion (one per level)
+        // is still evaluated once
+        assert!(e.evals <= 10_000 + 15 * 61, "{}", e.evals);
         assert!(e.error[0] > 1e-6, "{:?}", e.error);
     }
 }

@@ -957,7 +957,8 @@ mod tests {
     fn check_lines(s: &TableSpec, cols: &[usize], rows: &[usize]) {
         let tol = s.tolerance;
         let (nx, ny) = (s.axes[0].size, s.axes[1].size);
-        let (table, detail) = bake_with(s, &|| false, true, f64::INFINITY).expect("a GGX dfg table goes by lines");
+        let (table, detail) =
+            bake_with(s, &|| false, true, f64::INFINITY).expect("a GGX dfg table goes by lines");
         let (value, error) = detail.expect("asked for");
         let ctx = Ctx::new(s);
         let (mut checked, mut texel_evals) = (0u64, 0u64);

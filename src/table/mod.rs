@@ -91,7 +91,10 @@ fn tolerance_message(
     let shown: Vec<String> = worst
         .iter()
         .map(|m| {
-            let at: Vec<String> = m.at.iter().map(|(a, x)| format!("{a}={}", num(*x))).collect();
+            let at: Vec<String> =
+                m.at.iter()
+                    .map(|(a, x)| format!("{a}={}", num(*x)))
+                    .collect();
             format!(
                 "{} at texel {:?} ({}): {}",
                 m.channel,
@@ -340,7 +343,13 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     // texel i (axis 0 fastest)
     let nc = channels.len();
     // the error for channel c of texel i, whose value is not finite in f64 or f32
-    let texel_of = |i: usize| [i % dims[0], (i / dims[0]) % dims[1], i / (dims[0] * dims[1])];
+    let texel_of = |i: usize| {
+        [
+            i % dims[0],
+            (i / dims[0]) % dims[1],
+            i / (dims[0] * dims[1]),
+        ]
+    };
     let coords_of = |texel: [usize; 3]| -> Vec<(String, f64)> {
         spec.axes
             .iter()
