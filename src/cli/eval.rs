@@ -307,7 +307,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             v[c]
         )));
     }
-    if let Some(c) = e.iter().position(|x| !(*x <= a.tolerance)) {
+    if let Some(c) = e.iter().position(|x| x.is_nan() || *x > a.tolerance) {
         return Err(CliError::env(format!(
             "the quadrature's error estimate {} exceeds --tolerance {} (channel {c}, value {}): \
              the integrand cannot be resolved to that accuracy here; raise --tolerance",
