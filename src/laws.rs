@@ -327,15 +327,46 @@ pub struct Energy {
 
 /// Measures energy conservation at [`incoming_directions`] with quadrature tolerance `tol`.
 pub fn energy(m: &dyn Reflectance, tol: f64) -> Energy {
-    let mut all = Vec::new();
-    for (t, p) in incoming_directions(m.isotropic()) {
-        let a = directional_albedo(m, t.to_radians(), p.to_radians(), tol);
-        all.push(AlbedoAt {
-            theta_i_deg: t,
-            phi_i_deg: p,
-            albedo: a.value,
-            error: a.error,
-        });
+    energy_until(m, tol, None).expect("no deadline")
+}
+
+/// [`energy`], the directions in parallel (each albedo is a pure function of its direction,
+/// so the result does not depend on the threads), giving up (`None`) once `deadline` has
+/// passed (checked before every albedo).
+pub fn energy_until(
+    m: &dyn Reflectance,
+    tol: f64,
+    deadline: Option<&crate::resources::Deadline>,
+) -> Option<Energy> {
+    use rayon::prelude::*;
+    let stopped = std::sync::atomic::AtomicBool::new(false);
+    let all: Vec<AlbedoAt> = incoming_directions(m.isotropic())
+        .into_par_iter()
+        .with_min_len(1)
+        .map(|(t, p)| {
+            use std::sync::atomic::Ordering::Relaxed;
+            if stopped.load(Relaxed) || deadline.is_some_and(|d| d.passed()) {
+                stopped.store(true, Relaxed);
+            }
+            let a = if stopped.load(Relaxed) {
+                Albedo {
+                    value: 0.0,
+                    error: 0.0,
+                    evals: 0,
+                }
+            } else {
+                directional_albedo(m, t.to_radians(), p.to_radians(), tol)
+            };
+            AlbedoAt {
+                theta_i_deg: t,
+                phi_i_deg: p,
+                albedo: a.value,
+                error: a.error,
+            }
+        })
+        .collect();
+    if stopped.into_inner() {
+        return None;
     }
     let max = all
         .iter()
@@ -350,10 +381,10 @@ pub fn energy(m: &dyn Reflectance, tol: f64) -> Energy {
         .filter(|a| a.albedo - a.error > 1.0)
         .cloned()
         .collect();
-    Energy {
+    Some(Energy {
         holds: fails_at.is_empty(),
         max,
         fails_at,
         albedo: all,
-    }
+    })
 }

@@ -42,6 +42,12 @@ pub const DIMS: [usize; 3] = [90, 90, 180];
 pub const N: usize = 90 * 90 * 180;
 /// Size of a well-formed file in bytes: the header and three channels of f64.
 pub const FILE_BYTES: usize = 12 + 3 * N * 8;
+
+/// The largest BRDF value (1/sr, after the channel scales) accepted from a MERL file:
+/// measured materials peak orders of magnitude lower at the format's half-angle resolution,
+/// and the albedo of values far beyond could not be integrated to an absolute tolerance in
+/// f64 (a file of 1e300 kept the quadrature bisecting for minutes).
+pub const MAX_MEASURED_VALUE: f64 = 1e6;
 /// Per-channel scale: BRDF = stored × scale (R, G, B).
 pub const SCALE: [f64; 3] = [1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0];
 
@@ -218,6 +224,16 @@ impl Merl {
                     *v = -1.0;
                 } else {
                     *v = x * SCALE[c];
+                    if *v > MAX_MEASURED_VALUE {
+                        let (i, j, k) = (n / (90 * 180), (n / 180) % 90, n % 180);
+                        return Err(format!(
+                            "channel {} entry {n} (theta_h {i}, theta_d {j}, phi_d {k}) is {}/sr after the channel scale, \
+                             above {}/sr, which no measured material reaches: this is not measured BRDF data",
+                            ["R", "G", "B"][c],
+                            crate::numfmt::num(*v),
+                            crate::numfmt::num(MAX_MEASURED_VALUE)
+                        ));
+                    }
                 }
             }
         }
@@ -610,9 +626,23 @@ pub struct AlbedoRow {
 /// texel centres (μ = (i + 0.5)/n), by [`crate::laws::directional_albedo`] of the
 /// interpolated data (see the module documentation for unmeasured entries) to `tol`.
 pub fn albedo_table(m: &Arc<Merl>, n: usize, tol: f64) -> Vec<AlbedoRow> {
-    (0..n)
+    albedo_table_until(m, n, tol, None).expect("no deadline")
+}
+
+/// [`albedo_table`], giving up (`None`) once `deadline` has passed (checked before every
+/// row).
+pub fn albedo_table_until(
+    m: &Arc<Merl>,
+    n: usize,
+    tol: f64,
+    deadline: Option<&crate::resources::Deadline>,
+) -> Option<Vec<AlbedoRow>> {
+    let rows: Vec<Option<AlbedoRow>> = (0..n)
         .into_par_iter()
         .map(|i| {
+            if deadline.is_some_and(|d| d.passed()) {
+                return None;
+            }
             let mu = (i as f64 + 0.5) / n as f64;
             let mut row = AlbedoRow {
                 mu,
@@ -629,7 +659,8 @@ pub fn albedo_table(m: &Arc<Merl>, n: usize, tol: f64) -> Vec<AlbedoRow> {
                 row.albedo[c] = a.value;
                 row.error[c] = a.error;
             }
-            row
+            Some(row)
         })
-        .collect()
+        .collect();
+    rows.into_iter().collect()
 }

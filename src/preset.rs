@@ -79,9 +79,13 @@ impl Format {
                         Format::ALL.map(|f| f.name()).join(", ")
                     )
                 })?;
-            if !out.contains(f) {
-                out.push(*f);
+            if out.contains(f) {
+                return Err(format!(
+                    "{part:?} is listed twice; list each format once (accepted: {})",
+                    Format::ALL.map(|f| f.name()).join(", ")
+                ));
             }
+            out.push(*f);
         }
         Ok(out)
     }
@@ -248,7 +252,7 @@ impl RawAxes {
 struct RawAxis {
     size: usize,
     #[serde(default)]
-    range: Option<[f64; 2]>,
+    range: Option<Vec<f64>>,
     #[serde(default)]
     convention: Option<Convention>,
     #[serde(default)]
@@ -407,7 +411,10 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         if !(scale.is_finite() && scale > 0.0 && scale <= 1e30) {
             return Err(field(
                 at("scale"),
-                format!("must be a number in (0, 1e30], got {scale}"),
+                format!(
+                    "must be a number in (0, 1e30], got {scale}",
+                    scale = crate::numfmt::num(scale)
+                ),
             ));
         }
         if t.layout_3d.is_some() && spec.axes.len() != 3 {
@@ -673,11 +680,21 @@ fn table_spec(
             }
             (_, None) => Quantity::Cosine,
         };
+        let range = match raw.range.as_deref() {
+            None => [0.0, 1.0],
+            Some(&[lo, hi]) => [lo, hi],
+            Some(r) => {
+                return Err((
+                    format!("axes.{an}.range"),
+                    format!("must be two numbers [lo, hi], got {} numbers", r.len()),
+                ))
+            }
+        };
         out_axes.push(Axis {
             name: an.to_string(),
             quantity,
             size: raw.size,
-            range: raw.range.unwrap_or([0.0, 1.0]),
+            range,
             convention: raw.convention.unwrap_or(Convention::Centers),
         });
     }

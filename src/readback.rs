@@ -532,20 +532,35 @@ fn read_ktx2(
             e => format!("invalid KTX2: {e}"),
         })
     })?;
-    let writer = r.writer().unwrap_or("").to_string();
+    let writer = r.writer().unwrap_or("").trim_end_matches('\0').to_string();
     if !writer.starts_with("brdfbake ") {
-        return Err(not_ours(format!("KTXwriter is {writer:?}")));
+        let shown: String = writer.chars().take(80).collect();
+        return Err(not_ours(if writer.is_empty() {
+            "it has no KTXwriter".to_string()
+        } else {
+            format!("its KTXwriter is \"{}\"", shown.escape_default())
+        }));
     }
     let hd = r.header();
-    let (comp_bytes, components) = match hd.format {
-        Some(::ktx2::Format::R32_SFLOAT) => (4, 1),
-        Some(::ktx2::Format::R32G32_SFLOAT) => (4, 2),
-        Some(::ktx2::Format::R32G32B32A32_SFLOAT) => (4, 4),
-        Some(::ktx2::Format::R16_SFLOAT) => (2, 1),
-        Some(::ktx2::Format::R16G16_SFLOAT) => (2, 2),
-        Some(::ktx2::Format::R16G16B16A16_SFLOAT) => (2, 4),
-        f => return Err(not_ours(format!("unexpected vkFormat {f:?}"))),
-    };
+    let (comp_bytes, components) =
+        match hd.format {
+            Some(::ktx2::Format::R32_SFLOAT) => (4, 1),
+            Some(::ktx2::Format::R32G32_SFLOAT) => (4, 2),
+            Some(::ktx2::Format::R32G32B32A32_SFLOAT) => (4, 4),
+            Some(::ktx2::Format::R16_SFLOAT) => (2, 1),
+            Some(::ktx2::Format::R16G16_SFLOAT) => (2, 2),
+            Some(::ktx2::Format::R16G16B16A16_SFLOAT) => (2, 4),
+            Some(f) => {
+                return Err(not_ours(format!(
+                    "its vkFormat is {f:?}; brdfbake writes R, RG or RGBA in 16- or 32-bit float"
+                )))
+            }
+            None => return Err(not_ours(
+                "its vkFormat is undefined (0: a Basis Universal or other supercompressed file?); \
+                 brdfbake writes R, RG or RGBA in 16- or 32-bit float"
+                    .into(),
+            )),
+        };
     if hd.supercompression_scheme.is_some() || hd.level_count != 1 {
         return Err(not_ours("supercompressed or mipmapped".into()));
     }

@@ -302,20 +302,56 @@ pub fn parse_seconds(s: &str) -> Result<f64, String> {
 /// Refuses a bake whose estimated wall time on `threads` threads exceeds `limit` seconds,
 /// with the estimate and how to raise the limit.
 pub fn check_time(est: &TimeEstimate, threads: usize, limit: f64) -> Result<(), String> {
+    check_time_of(
+        "this bake",
+        "bake fewer or smaller tables",
+        est,
+        threads,
+        limit,
+    )
+}
+
+/// [`check_time`] for any command: `what` is what needs the time (`"this verify"`),
+/// `smaller` how to ask for less.
+pub fn check_time_of(
+    what: &str,
+    smaller: &str,
+    est: &TimeEstimate,
+    threads: usize,
+    limit: f64,
+) -> Result<(), String> {
     let wall = est.cpu_seconds / threads.max(1) as f64;
     if wall <= limit {
         return Ok(());
     }
     Err(format!(
-        "this bake needs an estimated {} on {threads} thread(s) (~{:.2e} integrand evaluations at ~{} ns each, \
+        "{what} needs an estimated {} on {threads} thread(s) (~{:.2e} integrand evaluations at ~{} ns each, \
          typical costs measured on a 2-core machine), more than the limit of {}: raise it with --max-time SECONDS \
-         (e.g. --max-time {}), use more threads, or bake fewer or smaller tables",
+         (e.g. --max-time {}), use more threads, or {smaller}",
         human_seconds(wall),
         est.evaluations,
         SECONDS_PER_EVALUATION * 1e9,
         human_seconds(limit),
         (wall * 1.5).ceil()
     ))
+}
+
+/// The CPU time of `evaluations` integrand evaluations.
+pub fn time_of_evaluations(evaluations: f64) -> TimeEstimate {
+    TimeEstimate {
+        evaluations,
+        cpu_seconds: evaluations * SECONDS_PER_EVALUATION,
+    }
+}
+
+impl std::ops::Add for TimeEstimate {
+    type Output = TimeEstimate;
+    fn add(self, o: TimeEstimate) -> TimeEstimate {
+        TimeEstimate {
+            evaluations: self.evaluations + o.evaluations,
+            cpu_seconds: self.cpu_seconds + o.cpu_seconds,
+        }
+    }
 }
 
 /// A point in time after which a running bake gives up (the run-time side of `--max-time`,
@@ -403,17 +439,36 @@ pub fn parse_size(s: &str) -> Result<u64, String> {
 
 /// Refuses `est` over `limit` with a message giving the estimate and how to raise the limit.
 pub fn check(est: &Estimate, limit: u64) -> Result<(), String> {
-    if est.peak() <= limit {
+    check_memory_of(
+        "this bake",
+        &format!(
+            "{} texels in all; texels and encoded files are kept until the atomic write",
+            est.texels
+        ),
+        "bake fewer or smaller tables or fewer formats",
+        est.peak(),
+        limit,
+    )
+}
+
+/// [`check`] for any command: `what` needs `bytes` (`detail` says of what), `smaller` says
+/// how to ask for less.
+pub fn check_memory_of(
+    what: &str,
+    detail: &str,
+    smaller: &str,
+    bytes: u64,
+    limit: u64,
+) -> Result<(), String> {
+    if bytes <= limit {
         return Ok(());
     }
     Err(format!(
-        "this bake needs an estimated {} of memory ({} texels in all; texels and encoded files are kept until \
-         the atomic write), more than the limit of {}: raise it with --max-memory SIZE (e.g. --max-memory {}), \
-         or bake fewer or smaller tables or fewer formats",
-        human(est.peak()),
-        est.texels,
+        "{what} needs an estimated {} of memory ({detail}), more than the limit of {}: raise it with \
+         --max-memory SIZE (e.g. --max-memory {}), or {smaller}",
+        human(bytes),
         human(limit),
-        suggest(est.peak())
+        suggest(bytes)
     ))
 }
 

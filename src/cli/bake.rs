@@ -31,16 +31,8 @@ pub struct BakeArgs {
     /// Print one JSON document (what was baked or checked) on stdout instead of text.
     #[arg(long)]
     pub json: bool,
-    /// Refuse (exit 2) a bake whose estimated peak memory exceeds SIZE: bytes, or with a
-    /// unit K, M, G, T (powers of 1024), e.g. 8GiB. Estimated from the requested sizes
-    /// before anything is allocated.
-    #[arg(long, value_name = "SIZE", default_value = "2GiB", value_parser = crate::resources::parse_size)]
-    pub max_memory: u64,
-    /// Refuse (exit 2) a bake whose estimated wall time exceeds SECONDS (estimated from the
-    /// requested sizes and typical costs per texel before anything is baked), and stop one
-    /// that is still running after SECONDS (exit 1, nothing written).
-    #[arg(long, value_name = "SECONDS", default_value = "600", value_parser = crate::resources::parse_seconds)]
-    pub max_time: f64,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
 
 /// One output that `--check` found missing or stale.
@@ -202,20 +194,21 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = resolve(&a.presets)?;
+    // (--check reads what a bake would write, one file at a time: bounded by the same)
+    let estimate = crate::resources::estimate(&presets, formats.as_deref());
+    crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)?;
     if a.check {
         return check(&a, &presets, formats.as_deref());
     }
-    let estimate = crate::resources::estimate(&presets, formats.as_deref());
-    crate::resources::check(&estimate, a.max_memory).map_err(CliError::input)?;
     let started = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.map_or(0, usize::from))
         .build()
         .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
     let time = crate::resources::estimate_time(&presets);
-    crate::resources::check_time(&time, pool.current_num_threads(), a.max_time)
+    crate::resources::check_time(&time, pool.current_num_threads(), a.guards.max_time)
         .map_err(CliError::input)?;
-    let deadline = crate::resources::Deadline::after(a.max_time);
+    let deadline = crate::resources::Deadline::after(a.guards.max_time);
     // Bake everything in memory first, then write all presets' files in one atomic set:
     // a failure anywhere leaves every previous output as it was.
     let to_err = CliError::from;

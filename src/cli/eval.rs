@@ -58,6 +58,8 @@ pub struct EvalArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
 
 fn parse_named<T: serde::de::DeserializeOwned>(
@@ -141,6 +143,15 @@ fn check_flags(a: &EvalArgs) -> Result<(), CliError> {
 
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
     check_flags(&a)?;
+    // one value: typically 10³–10⁵ evaluations, at most one integral's budget (~2 s)
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this eval",
+        memory: 16 << 20,
+        memory_detail: "one value".into(),
+        time: crate::resources::time_of_evaluations(1e5),
+        threads: 1,
+        smaller: "nothing smaller exists",
+    })?;
     use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
     if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&a.tolerance) {
         return Err(CliError::input(format!(
@@ -301,6 +312,9 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let x: Vec<f64> = spec.axes.iter().map(|ax| ax.range[0]).collect();
     let (mut v, mut e) =
         crate::readback::exact_at(&spec, &x, a.tolerance).map_err(CliError::input)?;
+    if deadline.passed() {
+        return Err(super::guards::stopped("this eval", &deadline));
+    }
     if let Some(c) = v.iter().position(|x| !x.is_finite()) {
         return Err(CliError::input(format!(
             "the value is not finite there ({} in channel {c}): the model is undefined at this point",

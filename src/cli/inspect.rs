@@ -13,6 +13,37 @@ pub struct InspectArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
+}
+
+/// The bytes a read-back of `path` reads at most: the file, its sidecar (for a texture) and
+/// the largest texture it may point to (for a sidecar), from their sizes on disk (0 for what
+/// is not there: reading it fails first).
+pub(super) fn file_bytes(path: &Path) -> u64 {
+    let size = |p: &Path| std::fs::metadata(p).map_or(0, |m| m.len());
+    let side = size(&path.with_extension("json"));
+    let textures = size(&path.with_extension("exr")).max(size(&path.with_extension("ktx2")));
+    size(path).max(textures) + side
+}
+
+/// The guards of a command that reads a file back: its bytes, the texels decoded as f32
+/// and their statistics take ~3 times the files (reading is quick; the time limit still
+/// holds for what follows).
+pub(super) fn admit_read(
+    guards: &super::guards::Guards,
+    what: &str,
+    path: &Path,
+) -> Result<crate::resources::Deadline, CliError> {
+    let bytes = file_bytes(path);
+    guards.admit(&super::guards::Work {
+        what,
+        memory: 3 * bytes + (1 << 20),
+        memory_detail: format!("{bytes} bytes of files read and decoded"),
+        time: Default::default(),
+        threads: 1,
+        smaller: "read a smaller table",
+    })
 }
 
 /// Reads a file back, mapping errors to exit codes (2: not ours / bad path, 1: unreadable).
@@ -43,6 +74,7 @@ fn axis_line(a: &crate::lut::Axis) -> String {
 }
 
 pub fn run(a: InspectArgs) -> Result<(), CliError> {
+    admit_read(&a.guards, "this inspect", &a.file)?;
     let rb = read(&a.file)?;
     let sc = rb.sidecar.as_ref();
     let s = |path: &[&str]| -> Option<Value> {

@@ -3,7 +3,7 @@
 //! the exit code is 0 unless `--check` is given and a checked law fails (then 1).
 
 use super::CliError;
-use crate::laws::{energy, reciprocity, Energy, Reciprocity};
+use crate::laws::{energy_until, reciprocity, Energy, Reciprocity};
 use crate::model::classic::{
     AshikhminShirley, BlinnPhongRtr, CosineLobe, Lafortune, Microfacet, PhongModified,
     PhongOriginal, Reflectance, Ward, WardVariant,
@@ -40,7 +40,14 @@ pub struct LawsArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
+
+/// Typical integrand evaluations of one directional albedo, for the time estimate (the
+/// models of `laws` at the default tolerance take 10³–10⁵; one is bounded by
+/// [`INTEGRAL_EVAL_BUDGET`](crate::integrate::budget::INTEGRAL_EVAL_BUDGET) in any case).
+const EVALS_PER_ALBEDO: f64 = 1e5;
 
 /// One row of `--albedo-table`: E at the measured azimuths and averaged over φi.
 #[derive(serde::Serialize)]
@@ -54,10 +61,21 @@ struct TableRow {
     error: f64,
 }
 
-fn albedo_table(m: &dyn Reflectance, n: usize, tol: f64) -> Vec<TableRow> {
+fn albedo_table(
+    m: &dyn Reflectance,
+    n: usize,
+    tol: f64,
+    deadline: &crate::resources::Deadline,
+) -> Option<Vec<TableRow>> {
+    use rayon::prelude::*;
     let phis = crate::laws::incoming_phis_deg(m.isotropic());
-    (0..n)
+    let rows: Vec<Option<TableRow>> = (0..n)
+        .into_par_iter()
+        .with_min_len(1)
         .map(|i| {
+            if deadline.passed() {
+                return None;
+            }
             let mu = (i as f64 + 0.5) / n as f64;
             let t = mu.acos();
             let mut err = 0.0f64;
@@ -70,14 +88,15 @@ fn albedo_table(m: &dyn Reflectance, n: usize, tol: f64) -> Vec<TableRow> {
                 })
                 .collect();
             let avg = crate::laws::azimuth_averaged_albedo(m, t, tol);
-            TableRow {
+            Some(TableRow {
                 mu,
                 albedo,
                 azimuth_average: avg.value,
                 error: err.max(avg.error),
-            }
+            })
         })
-        .collect()
+        .collect();
+    rows.into_iter().collect()
 }
 
 /// Every model name and its keys (with defaults), for `--help` and error messages.
@@ -121,7 +140,24 @@ impl<'a> Params<'a> {
                     accepted.join(", ")
                 )));
             }
+            // (lafortune's `lobe` is a list: one per lobe)
+            if k != "lobe" && pairs.iter().any(|(p, _): &(String, String)| p == k) {
+                return Err(CliError::input(format!(
+                    "model {model}: key {k:?} is given twice; give each key once"
+                )));
+            }
             pairs.push((k.to_string(), v.trim().to_string()));
+        }
+        // `alpha` sets both of Ward's widths: with either of them it would be overridden
+        if let Some(x) = ["alpha_x", "alpha_y"]
+            .into_iter()
+            .find(|x| pairs.iter().any(|(k, _)| k == x))
+        {
+            if pairs.iter().any(|(k, _)| k == "alpha") {
+                return Err(CliError::input(format!(
+                    "model {model}: alpha and {x} conflict (alpha sets alpha_x and alpha_y); give alpha, or alpha_x and alpha_y"
+                )));
+            }
         }
         Ok(Params {
             model,
@@ -395,10 +431,13 @@ fn text(m: &dyn Reflectance, r: &Reciprocity, e: &Energy) -> String {
 }
 
 pub fn run(a: LawsArgs) -> Result<(), CliError> {
-    if !(a.tolerance.is_finite() && a.tolerance > 0.0 && a.tolerance <= 1e-2) {
+    use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
+    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&a.tolerance) {
         return Err(CliError::input(format!(
-            "--tolerance must be in (0, 0.01], got {}",
-            a.tolerance
+            "--tolerance must be in [{}, {}] (as a table's), got {}",
+            crate::numfmt::num(MIN_TOLERANCE),
+            crate::numfmt::num(MAX_TOLERANCE),
+            crate::numfmt::num(a.tolerance)
         )));
     }
     if let Some(n) = a.albedo_table {
@@ -413,20 +452,43 @@ pub fn run(a: LawsArgs) -> Result<(), CliError> {
     for spec in &a.models {
         models.extend(parse_model(spec)?);
     }
+    // estimates: the albedos (each bounded anyway), the reciprocity pairs (cheap), and the
+    // MERL files held in memory
+    let albedos: usize = models
+        .iter()
+        .map(|m| {
+            let phis = crate::laws::incoming_phis_deg(m.isotropic()).len();
+            crate::laws::incoming_directions(m.isotropic()).len()
+                + a.albedo_table.map_or(0, |n| n * (phis + 1))
+        })
+        .sum();
+    let merl_files = a.models.iter().filter(|m| m.starts_with("merl:")).count() as u64;
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this laws run",
+        memory: merl_files * 2 * crate::merl::FILE_BYTES as u64 + (16 << 20),
+        memory_detail: format!("{merl_files} MERL file(s) held in memory"),
+        time: crate::resources::time_of_evaluations(albedos as f64 * EVALS_PER_ALBEDO),
+        threads: rayon::current_num_threads(),
+        smaller: "measure fewer models, or a smaller --albedo-table",
+    })?;
+    let stopped = || super::guards::stopped("this laws run", &deadline);
     let mut docs = Vec::new();
     let mut failed = false;
     for m in &models {
         let r = reciprocity(m.as_ref());
-        let e = energy(m.as_ref(), a.tolerance);
+        let e = energy_until(m.as_ref(), a.tolerance, Some(&deadline)).ok_or_else(stopped)?;
         failed |= match a.check {
             Some(CheckLaw::Reciprocity) => !r.holds,
             Some(CheckLaw::Energy) => !e.holds,
             Some(CheckLaw::Both) => !r.holds || !e.holds,
             None => false,
         };
-        let table = a
-            .albedo_table
-            .map(|n| albedo_table(m.as_ref(), n, a.tolerance));
+        let table = match a.albedo_table {
+            Some(n) => {
+                Some(albedo_table(m.as_ref(), n, a.tolerance, &deadline).ok_or_else(stopped)?)
+            }
+            None => None,
+        };
         if a.json {
             docs.push(json!({
                 "model": m.label(),

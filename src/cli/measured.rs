@@ -3,7 +3,7 @@
 //! channel with their errors.
 
 use super::CliError;
-use crate::merl::{albedo_table, fit_model_lambert, Merl, FIT_MODELS};
+use crate::merl::{albedo_table_until, fit_model_lambert, Merl, FIT_MODELS};
 use crate::model::{Masking, NdfKind};
 use serde_json::json;
 use std::sync::Arc;
@@ -32,7 +32,17 @@ pub struct MeasuredArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
+
+/// Typical integrand evaluations of one albedo of measured data at the measured floor
+/// tolerance, for the time estimate (bounded by the integral budget in any case).
+const EVALS_PER_ALBEDO: f64 = 2e5;
+
+/// Evaluations of one fit: ~90 alpha values (a grid of 40, then golden-section steps), each
+/// a linear least-squares solve over ~40k nodes.
+const EVALS_PER_FIT: f64 = 90.0 * 40_000.0;
 
 /// Node strides (theta_d, phi_d) of the fit: every theta_h node, every 3rd theta_d and
 /// every 6th phi_d node (~40k nodes above the horizon).
@@ -63,12 +73,25 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             ndfs.push(*n);
         }
     }
+    let fits = if a.no_fit { 0 } else { 3 * ndfs.len() };
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this measured run",
+        // the file read, its values, and the fit nodes
+        memory: 2 * crate::merl::FILE_BYTES as u64 + (64 << 20),
+        memory_detail: "a MERL file read and held, and the fit nodes".into(),
+        time: crate::resources::time_of_evaluations(
+            (3 * a.albedo_size) as f64 * EVALS_PER_ALBEDO + fits as f64 * EVALS_PER_FIT,
+        ),
+        threads: rayon::current_num_threads(),
+        smaller: "a smaller --albedo-size, or fewer --fit models",
+    })?;
     let m = Merl::read(&a.file).map_err(|e| CliError {
         code: e.exit_code(),
         msg: e.to_string(),
     })?;
     let m = Arc::new(m);
-    let table = albedo_table(&m, a.albedo_size, a.tolerance);
+    let table = albedo_table_until(&m, a.albedo_size, a.tolerance, Some(&deadline))
+        .ok_or_else(|| super::guards::stopped("this measured run", &deadline))?;
     // one list of per-channel fits per NDF, in the order asked
     let all_fits: Vec<(&str, Vec<_>)> = if a.no_fit {
         Vec::new()

@@ -13,6 +13,7 @@ macro_rules! outln {
 mod bake;
 mod completions;
 mod eval;
+mod guards;
 mod inspect;
 mod laws;
 mod list;
@@ -101,6 +102,17 @@ impl From<crate::pipeline::PipelineError> for CliError {
             P::Input(m) => CliError::input(m),
             P::Environment(m) | P::Failed(m) => CliError::env(m),
         }
+    }
+}
+
+/// The error of a table that did not bake: exit 1 for one that ran out of time or missed its
+/// tolerance (the inputs were valid), exit 2 for invalid inputs.
+pub(crate) fn bake_error(preset: &str, e: crate::table::BakeError) -> CliError {
+    use crate::table::BakeError as B;
+    let msg = format!("preset {preset}: {e}");
+    match e {
+        B::TimeLimit { .. } | B::ToleranceMissed { .. } => CliError::env(msg),
+        _ => CliError::input(msg),
     }
 }
 

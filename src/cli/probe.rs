@@ -18,6 +18,8 @@ pub struct ProbeArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
 
 /// Parses `a=1,b=2` against the axis names; every axis exactly once.
@@ -62,6 +64,8 @@ pub(super) fn parse_at(s: &str, names: &[&str]) -> Result<Vec<f64>, CliError> {
 }
 
 pub fn run(a: ProbeArgs) -> Result<(), CliError> {
+    // (the exact value is one integral, bounded by the integral budget: ~2 s at most)
+    let deadline = super::inspect::admit_read(&a.guards, "this probe", &a.file)?;
     let rb = super::inspect::read(&a.file)?;
     let table = rb.table.as_ref().ok_or_else(|| {
         if rb.sidecar.is_some() {
@@ -94,6 +98,9 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     let gpu: Vec<f64> = lut.lookup(&x).iter().map(|v| v / rb.scale).collect();
     let (exact, err) = crate::readback::exact_at(&table.spec, &x, EXACT_TOLERANCE)
         .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
+    if deadline.passed() {
+        return Err(super::guards::stopped("this probe", &deadline));
+    }
     notes.extend(
         lut.axes
             .iter()

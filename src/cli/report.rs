@@ -18,14 +18,30 @@ pub struct ReportArgs {
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
 }
+
+/// Largest `--filament-dfg` file read: a 4096² table with cloth written as `0xhhhh, ` (8
+/// bytes a value, 3 values a texel) is 384 MiB; 512 MiB leaves room for line breaks.
+const MAX_INC_BYTES: u64 = 512 << 20;
+
+/// Integrand evaluations of one exact value of the comparison (a split sum and the cloth
+/// channel at tolerance 1e-7, texel by texel: `resources`' dfg and cloth figures).
+const EVALS_PER_COMPARED_TEXEL: f64 = 1_050.0;
 
 pub fn run(a: ReportArgs) -> Result<(), CliError> {
     // the file first: a bad file fails fast, before any baking
     let shipped = match &a.filament_dfg {
         Some(p) => {
-            let bytes = std::fs::read(p).map_err(|e| {
-                CliError::env(format!("--filament-dfg {}: cannot read: {e}", p.display()))
+            let bytes = crate::input::read_regular(
+                p,
+                MAX_INC_BYTES,
+                "a dfg.inc as Filament's cmgen writes it",
+            )
+            .map_err(|e| CliError {
+                code: e.exit_code(),
+                msg: format!("--filament-dfg: {e}"),
             })?;
             let text = String::from_utf8(bytes).map_err(|_| {
                 CliError::input(format!(
@@ -41,11 +57,41 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = super::bake::resolve(&a.presets)?;
+    // the tables as a bake of them in EXR would hold them, and the page: ~the PNG previews
+    let est = crate::resources::estimate(
+        &presets,
+        Some(&[crate::preset::Format::Exr, crate::preset::Format::Png]),
+    );
+    let compared = shipped
+        .as_ref()
+        .map_or(0, |(_, d)| filament::exact_values(d));
+    let time = crate::resources::estimate_time(&presets)
+        + crate::resources::time_of_evaluations(compared as f64 * EVALS_PER_COMPARED_TEXEL);
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this report",
+        memory: est.peak() + compared as u64 * 48,
+        memory_detail: format!(
+            "{} texels baked in memory{}",
+            est.texels,
+            if compared > 0 {
+                format!(", {compared} exact values of the shipped table")
+            } else {
+                String::new()
+            }
+        ),
+        time,
+        threads: rayon::current_num_threads(),
+        smaller: "report fewer or smaller tables",
+    })?;
     let mut tables = Vec::new();
     for p in &presets {
         for t in &p.tables {
-            let lut = crate::table::bake(&t.spec)
-                .map_err(|e| CliError::input(format!("preset {}: {e}", p.name)))?;
+            let opts = crate::table::BakeOptions {
+                deadline: Some(&deadline),
+                accept_error_estimate: t.accept_error_estimate,
+            };
+            let lut = crate::table::bake_with(&t.spec, &opts)
+                .map_err(|e| super::bake_error(&p.name, e))?;
             tables.push(ReportTable {
                 preset: p.name.clone(),
                 spec: t.spec.clone(),
@@ -53,9 +99,14 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
             });
         }
     }
-    let comparison = shipped
-        .as_ref()
-        .map(|(label, d)| (label.as_str(), filament::compare(d, 1e-7)));
+    let comparison = match &shipped {
+        Some((label, d)) => Some((
+            label.as_str(),
+            filament::compare_until(d, 1e-7, Some(&deadline))
+                .ok_or_else(|| super::guards::stopped("this report", &deadline))?,
+        )),
+        None => None,
+    };
     let page = html(&tables, comparison.as_ref().map(|(label, c)| (*label, c)));
     let path = a.out.join("index.html");
     crate::pipeline::write_files(&vec![(path.clone(), page.into_bytes())])?;

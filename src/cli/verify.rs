@@ -21,9 +21,41 @@ pub struct VerifyArgs {
     /// Largest accepted error per channel: absolute, relative for |values| > 1.
     #[arg(long, default_value_t = 1e-6)]
     pub tolerance: f64,
+    /// Recompute every texel, not a spread of them (corners, edge midpoints, the centre
+    /// and 64 pseudo-random texels).
+    #[arg(long)]
+    pub all: bool,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
+}
+
+/// How much more a reference value at [`REFERENCE_TOLERANCE`] costs than a texel at the
+/// default tolerance 1e-7, for the time estimate: the rules' error falls like h^7 to h^15,
+/// so 1000 times tighter takes ~3 to ~10 times the nodes; 10 is the guide's upper end.
+const REFERENCE_COST_FACTOR: f64 = 10.0;
+
+/// The estimated cost of recomputing `n` texels of table `t`.
+fn recompute_time(t: &crate::preset::PresetTable, n: usize) -> crate::resources::TimeEstimate {
+    let e = crate::resources::estimate_table_time(t);
+    let texels: f64 = t.spec.axes.iter().map(|a| a.size as f64).product();
+    let k = REFERENCE_COST_FACTOR * n as f64 / texels.max(1.0);
+    crate::resources::TimeEstimate {
+        evaluations: e.evaluations * k,
+        cpu_seconds: e.cpu_seconds * k,
+    }
+}
+
+/// How many texels [`sample_texels`] (or `--all`) checks in a table of `dims`.
+fn checked_count(dims: [usize; 3], all: bool) -> usize {
+    let n = dims[0] * dims[1] * dims[2];
+    if all {
+        n
+    } else {
+        n.min(27 + RANDOM_SAMPLES)
+    }
 }
 
 /// The texels checked: every combination of {first, middle, last} per axis, and
@@ -55,17 +87,39 @@ pub fn sample_texels(lut: &Lut) -> Vec<[usize; 3]> {
 /// Per channel: (max error, texel where it occurs, stored, exact).
 pub type ChannelError = (f64, [usize; 3], f64, f64);
 
-/// Compares sampled texels of `lut` (stored values divided by `scale`) with the values
+/// Every texel of `lut`, in texel order.
+pub fn all_texels(lut: &Lut) -> Vec<[usize; 3]> {
+    let dims = [lut.dim(0), lut.dim(1), lut.dim(2)];
+    let mut v = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
+    for z in 0..dims[2] {
+        for y in 0..dims[1] {
+            for x in 0..dims[0] {
+                v.push([x, y, z]);
+            }
+        }
+    }
+    v
+}
+
+/// Compares the given texels of `lut` (stored values divided by `scale`) with the values
 /// recomputed from `spec` at [`REFERENCE_TOLERANCE`].
-pub fn verify_lut(
+/// `None` when `deadline` passed first (checked before every texel).
+pub fn verify_texels(
     spec: &TableSpec,
     lut: &Lut,
     scale: f64,
-) -> Result<(usize, Vec<ChannelError>), String> {
-    let texels = sample_texels(lut);
+    texels: &[[usize; 3]],
+    deadline: Option<&crate::resources::Deadline>,
+) -> Result<Option<(usize, Vec<ChannelError>)>, String> {
+    let stopped = std::sync::atomic::AtomicBool::new(false);
     let exact: Vec<Result<Vec<f64>, String>> = texels
         .par_iter()
         .map(|idx| {
+            use std::sync::atomic::Ordering::Relaxed;
+            if stopped.load(Relaxed) || deadline.is_some_and(|d| d.passed()) {
+                stopped.store(true, Relaxed);
+                return Ok(Vec::new());
+            }
             let x: Vec<f64> = lut
                 .axes
                 .iter()
@@ -75,6 +129,9 @@ pub fn verify_lut(
             crate::readback::exact_at(spec, &x, REFERENCE_TOLERANCE).map(|r| r.0)
         })
         .collect();
+    if stopped.into_inner() {
+        return Ok(None);
+    }
     let nc = lut.channels.len();
     let mut out = vec![(0.0, [0; 3], 0.0, 0.0); nc];
     for (idx, ex) in texels.iter().zip(exact) {
@@ -87,7 +144,7 @@ pub fn verify_lut(
             }
         }
     }
-    Ok((texels.len(), out))
+    Ok(Some((texels.len(), out)))
 }
 
 pub fn run(a: VerifyArgs) -> Result<(), CliError> {
@@ -99,7 +156,21 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2") {
+        return Err(CliError::input(format!(
+            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr or .ktx2 texture \
+             brdfbake wrote, or its .json sidecar{}",
+            p.display(),
+            if ext == "png" {
+                " (a .png is a preview for people; verify the table's .exr or .ktx2)"
+            } else {
+                ""
+            }
+        )));
+    }
+    let threads = rayon::current_num_threads();
     let mut jobs: Vec<(String, TableSpec, Lut, f64)> = Vec::new();
+    let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
     if let Some(sc) = schema.as_deref() {
         if sc != crate::meta::SCHEMA && sc.starts_with("brdfbake.lut") {
@@ -113,6 +184,16 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         }
     }
     if matches!(ext, "exr" | "ktx2") || schema.as_deref() == Some(crate::meta::SCHEMA) {
+        // the files' bytes, the texels as f32 and their f64 exact values: ~4 times the files
+        let bytes = super::inspect::file_bytes(p);
+        let d = a.guards.admit(&super::guards::Work {
+            what: "this verify",
+            memory: 4 * bytes + (1 << 20),
+            memory_detail: format!("{bytes} bytes of files, read and recomputed"),
+            time: Default::default(),
+            threads,
+            smaller: "verify a smaller table",
+        })?;
         let rb = super::inspect::read(p)?;
         let has_sidecar = rb.sidecar.is_some();
         let table = rb.table.ok_or_else(|| {
@@ -135,6 +216,20 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 p.display()
             ))
         })?;
+        // the time, now that the table is known
+        let time = recompute_time(
+            &table,
+            checked_count([lut.dim(0), lut.dim(1), lut.dim(2)], a.all),
+        );
+        crate::resources::check_time_of(
+            "this verify",
+            "verify fewer texels (without --all)",
+            &time,
+            threads,
+            a.guards.max_time,
+        )
+        .map_err(CliError::input)?;
+        deadline = Some(d);
         jobs.push((a.target.clone(), table.spec, lut, rb.scale));
     } else {
         // a .json without a sidecar's schema is read as a preset; say so when that fails,
@@ -154,10 +249,29 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             }
             e
         })?;
+        let mut time = crate::resources::estimate_time(&presets);
+        for t in presets.iter().flat_map(|p| &p.tables) {
+            let dims = [0, 1, 2].map(|k| t.spec.axes.get(k).map_or(1, |x| x.size));
+            time = time + recompute_time(t, checked_count(dims, a.all));
+        }
+        let est = crate::resources::estimate(&presets, Some(&[]));
+        let d = a.guards.admit(&super::guards::Work {
+            what: "this verify",
+            memory: est.peak(),
+            memory_detail: format!("{} texels baked in memory", est.texels),
+            time,
+            threads,
+            smaller: "verify fewer or smaller tables, or fewer texels (without --all)",
+        })?;
+        deadline = Some(d);
         for preset in presets {
             for t in &preset.tables {
-                let lut = crate::table::bake(&t.spec)
-                    .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
+                let opts = crate::table::BakeOptions {
+                    deadline: deadline.as_ref(),
+                    accept_error_estimate: t.accept_error_estimate,
+                };
+                let lut = crate::table::bake_with(&t.spec, &opts)
+                    .map_err(|e| super::bake_error(&preset.name, e))?;
                 jobs.push((
                     format!("{}/{}", preset.name, t.spec.name),
                     t.spec.clone(),
@@ -170,7 +284,16 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     let mut failed = Vec::new();
     let mut docs = Vec::new();
     for (label, spec, lut, scale) in &jobs {
-        let (n, errs) = verify_lut(spec, lut, *scale).map_err(CliError::input)?;
+        let texels = if a.all {
+            all_texels(lut)
+        } else {
+            sample_texels(lut)
+        };
+        let (n, errs) = verify_texels(spec, lut, *scale, &texels, deadline.as_ref())
+            .map_err(CliError::input)?
+            .ok_or_else(|| {
+                super::guards::stopped("this verify", deadline.as_ref().expect("set"))
+            })?;
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;
         if !a.json {
             outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");

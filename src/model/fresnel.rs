@@ -45,21 +45,33 @@ impl Fresnel {
                 if f0.is_finite() && (0.0..=1.0).contains(&f0) {
                     Ok(())
                 } else {
-                    Err(format!("fresnel.f0 must be in [0, 1], got {f0}"))
+                    Err(format!(
+                        "fresnel.f0 must be in [0, 1], got {f0}",
+                        f0 = crate::numfmt::num(f0)
+                    ))
                 }
             }
             Fresnel::Dielectric { eta } => {
                 if eta.is_finite() && eta > 0.0 && eta <= 100.0 {
                     Ok(())
                 } else {
-                    Err(format!("fresnel.eta must be in (0, 100], got {eta}"))
+                    Err(format!(
+                        "fresnel.eta must be in (0, 100], got {eta}",
+                        eta = crate::numfmt::num(eta)
+                    ))
                 }
             }
             Fresnel::Conductor { eta, k } => {
                 if !(eta.is_finite() && eta > 0.0 && eta <= 100.0) {
-                    Err(format!("fresnel.eta must be in (0, 100], got {eta}"))
+                    Err(format!(
+                        "fresnel.eta must be in (0, 100], got {eta}",
+                        eta = crate::numfmt::num(eta)
+                    ))
                 } else if !(k.is_finite() && (0.0..=100.0).contains(&k)) {
-                    Err(format!("fresnel.k must be in [0, 100], got {k}"))
+                    Err(format!(
+                        "fresnel.k must be in [0, 100], got {k}",
+                        k = crate::numfmt::num(k)
+                    ))
                 } else {
                     Ok(())
                 }

@@ -107,33 +107,32 @@ impl Ndf {
         if !(alpha.is_finite() && alpha > 0.0) {
             return Err(format!(
                 "{} roughness alpha must be a finite number > 0, got {alpha}",
-                kind.name()
+                kind.name(),
+                alpha = crate::numfmt::num(alpha)
             ));
         }
         if !(MIN_ALPHA..=MAX_ALPHA).contains(&alpha) {
             return Err(format!(
                 "{} roughness alpha must be in [{MIN_ALPHA:e}, {MAX_ALPHA}], got {}",
                 kind.name(),
-                if alpha < 1e-3 {
-                    format!("{alpha:e}")
-                } else {
-                    format!("{alpha}")
-                }
+                crate::numfmt::num(alpha)
             ));
         }
         let norm = match kind {
             NdfKind::Beckmann | NdfKind::Ggx => 1.0 / (PI * alpha * alpha),
             NdfKind::Gaussian => {
                 if alpha > 10.0 {
-                    return Err(format!("gaussian m must be <= 10 (radians), got {alpha}"));
+                    return Err(format!(
+                        "gaussian m must be <= 10 (radians), got {alpha}",
+                        alpha = crate::numfmt::num(alpha)
+                    ));
                 }
                 gaussian_normalization(alpha)
             }
             NdfKind::BlinnPhong => {
                 if alpha > 1.0 {
                     return Err(format!(
-                        "blinn-phong needs alpha <= 1 (exponent s = 2/alpha^2 - 2 >= 0), got {alpha}"
-                    ));
+                        "blinn-phong needs alpha <= 1 (exponent s = 2/alpha^2 - 2 >= 0), got {alpha}", alpha = crate::numfmt::num(alpha)));
                 }
                 let s = blinn_phong_exponent(alpha);
                 (s + 2.0) / (2.0 * PI)

@@ -163,8 +163,31 @@ fn exact(mu: f64, r: f64, tol: f64) -> [f64; 3] {
 /// Compares `shipped` with exact values computed to absolute tolerance `tol` (use ≤ 1e-6:
 /// the differences of interest are f16-sized, ~1e-4 and up).
 pub fn compare(shipped: &ShippedDfg, tol: f64) -> Comparison {
+    compare_until(shipped, tol, None).expect("no deadline")
+}
+
+/// The exact values [`compare`] computes: (size + 1) rows of `size` texels.
+pub fn exact_values(shipped: &ShippedDfg) -> usize {
+    (shipped.size + 1) * shipped.size
+}
+
+/// [`compare`], giving up (`None`) once `deadline` has passed (checked before every texel).
+pub fn compare_until(
+    shipped: &ShippedDfg,
+    tol: f64,
+    deadline: Option<&crate::resources::Deadline>,
+) -> Option<Comparison> {
     let n = shipped.size;
     let nc = shipped.channels;
+    let stopped = std::sync::atomic::AtomicBool::new(false);
+    let out_of_time = || {
+        use std::sync::atomic::Ordering::Relaxed;
+        if stopped.load(Relaxed) || deadline.is_some_and(|d| d.passed()) {
+            stopped.store(true, Relaxed);
+            return true;
+        }
+        false
+    };
     // exact rows at r_j = (j + 0.5)/n, j < n, and r_n = 1 (cmgen's saturated last row)
     let rows: Vec<Vec<[f64; 3]>> = (0..=n)
         .into_par_iter()
@@ -175,10 +198,18 @@ pub fn compare(shipped: &ShippedDfg, tol: f64) -> Comparison {
                 1.0
             };
             (0..n)
-                .map(|x| exact((x as f64 + 0.5) / n as f64, r, tol))
+                .map(|x| {
+                    if out_of_time() {
+                        return [0.0; 3];
+                    }
+                    exact((x as f64 + 0.5) / n as f64, r, tol)
+                })
                 .collect()
         })
         .collect();
+    if stopped.into_inner() {
+        return None;
+    }
     let stats = |shift: usize| -> Vec<ChannelStats> {
         (0..nc)
             .map(|c| {
@@ -242,14 +273,14 @@ pub fn compare(shipped: &ShippedDfg, tol: f64) -> Comparison {
         error_estimate: vec![0.0; nc],
         evaluations: 0,
     };
-    Comparison {
+    Some(Comparison {
         size: n,
         channels: nc,
         as_sampled: stats(0),
         as_computed: stats(1),
         f16_floor,
         diff,
-    }
+    })
 }
 
 #[cfg(test)]

@@ -210,7 +210,8 @@ impl ClassicModel {
                 Ok(())
             } else {
                 Err(format!(
-                    "model.classic.{name} must be a weight in [0, 1], got {x}"
+                    "model.classic.{name} must be a weight in [0, 1], got {x}",
+                    x = crate::numfmt::num(x)
                 ))
             }
         };
@@ -241,14 +242,14 @@ impl ClassicModel {
                 for (n, c) in [("cx", cx), ("cy", cy), ("cz", cz)] {
                     if !(c.is_finite() && c.abs() <= 100.0) {
                         return Err(format!(
-                            "model.classic.{n} must be a number in [-100, 100], got {c}"
+                            "model.classic.{n} must be a number in [-100, 100], got {c}",
+                            c = crate::numfmt::num(c)
                         ));
                     }
                 }
                 if !(rho.is_finite() && (0.0..=1e4).contains(&rho)) {
                     return Err(format!(
-                        "model.classic.rho (the lobe's albedo factor, 1/sr) must be in [0, 10000], got {rho}"
-                    ));
+                        "model.classic.rho (the lobe's albedo factor, 1/sr) must be in [0, 10000], got {rho}", rho = crate::numfmt::num(rho)));
                 }
                 Ok(())
             }

@@ -242,7 +242,9 @@ impl TableSpec {
             let [lo, hi] = ax.range;
             if !(lo.is_finite() && hi.is_finite()) || lo > hi || (lo == hi && ax.size > 1) {
                 return Err(format!(
-                    "{f}.range must be two finite numbers [lo, hi] with lo < hi, got [{lo}, {hi}]"
+                    "{f}.range must be two finite numbers [lo, hi] with lo < hi, got [{lo}, {hi}]",
+                    lo = crate::numfmt::num(lo),
+                    hi = crate::numfmt::num(hi)
                 ));
             }
             if ax.convention == Convention::Endpoints && ax.size < 2 {
@@ -252,7 +254,9 @@ impl TableSpec {
                 Quantity::Cosine => {
                     if lo < 0.0 || hi > 1.0 {
                         return Err(format!(
-                            "{f}.range must lie within [0, 1] (a cosine), got [{lo}, {hi}]"
+                            "{f}.range must lie within [0, 1] (a cosine), got [{lo}, {hi}]",
+                            lo = crate::numfmt::num(lo),
+                            hi = crate::numfmt::num(hi)
                         ));
                     }
                     let zero_ok = !matches!(
@@ -300,8 +304,7 @@ impl TableSpec {
                 Quantity::Anisotropy => {
                     if ax.name != "anisotropy" || lo < 0.0 || hi > 1.0 {
                         return Err(format!(
-                            "{f}.range must lie within [0, 1] (an anisotropy: 0 isotropic, 1 alpha_x/alpha_y = 10), got [{lo}, {hi}]"
-                        ));
+                            "{f}.range must lie within [0, 1] (an anisotropy: 0 isotropic, 1 alpha_x/alpha_y = 10), got [{lo}, {hi}]", lo = crate::numfmt::num(lo), hi = crate::numfmt::num(hi)));
                     }
                 }
                 Quantity::Roughness(q) => {
@@ -353,7 +356,10 @@ impl TableSpec {
             .map_err(|e| format!("model.{e}"))?;
         let w = self.model.diffuse_weight;
         if !(w.is_finite() && (0.0..=1.0).contains(&w)) {
-            return Err(format!("model.diffuse must be a weight in [0, 1], got {w}"));
+            return Err(format!(
+                "model.diffuse must be a weight in [0, 1], got {w}",
+                w = crate::numfmt::num(w)
+            ));
         }
         if !(self.tolerance.is_finite()
             && self.tolerance >= MIN_TOLERANCE
@@ -361,7 +367,7 @@ impl TableSpec {
         {
             return Err(format!(
                 "tolerance must be in [1e-12, 1e-2], got {}",
-                self.tolerance
+                crate::numfmt::num(self.tolerance)
             ));
         }
         let m = &self.model;
