@@ -624,8 +624,8 @@ fn report_compares_a_shipped_filament_table() {
             d,
             &["report", "--filament-dfg", "missing.inc", "--out", "r2"],
         ),
-        1,
-        "missing.inc: cannot read",
+        2,
+        "missing.inc: no such file",
     );
     assert!(!d.join("r2").exists(), "nothing written for refused input");
 }

@@ -15,64 +15,12 @@ use std::collections::BTreeMap;
 use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-const INPUT: i32 = 2;
-const ENV: i32 = 1;
-
-fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_brdfbake"));
-    c.env_remove("RAYON_NUM_THREADS");
-    c
-}
-
-fn run<S: AsRef<std::ffi::OsStr>>(cwd: &Path, args: &[S]) -> Output {
-    bin().args(args).current_dir(cwd).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn assert_fails(o: &Output, code: i32, expect: &[&str], what: &str) {
-    let err = stderr(o);
-    assert_eq!(
-        o.status.code(),
-        Some(code),
-        "{what}: wrong exit code\nstdout:\n{}\nstderr:\n{err}",
-        String::from_utf8_lossy(&o.stdout)
-    );
-    assert!(err.starts_with("error:"), "{what}: stderr: {err}");
-    assert!(!err.contains("panicked"), "{what}: panicked: {err}");
-    for s in expect {
-        assert!(err.contains(s), "{what}: stderr lacks {s:?}:\n{err}");
-    }
-}
-
-/// Every file under `dir` (relative path → bytes); symlinks and other non-files as empty.
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
-        let Ok(rd) = fs::read_dir(dir) else { return };
-        for e in rd {
-            let p = e.unwrap().path();
-            let t = fs::symlink_metadata(&p).unwrap().file_type();
-            if t.is_dir() {
-                walk(root, &p, out);
-            } else {
-                let bytes = if t.is_file() {
-                    fs::read(&p).unwrap()
-                } else {
-                    Vec::new()
-                };
-                out.insert(p.strip_prefix(root).unwrap().to_path_buf(), bytes);
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
-}
+#[path = "common/cli.rs"]
+mod cli_support;
+use cli_support::{assert_fails, bin, run, snapshot, stderr, ENV, INPUT};
 
 /// Writes a preset with one g1 table whose `cos_theta` size is `n` and an albedo table of
 /// `m` × `m` texels (the slow one: adaptive 2D quadrature per texel), in EXR and KTX2.

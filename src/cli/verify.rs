@@ -340,12 +340,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
 /// The `"schema"` string of a .json file, if it is readable JSON with one (a sidecar says
 /// `brdfbake.lut/1`, a preset `brdfbake.preset/1`). Reads at most the preset size limit.
 fn json_schema(p: &Path) -> Option<String> {
-    let f = std::fs::File::open(p).ok()?;
-    if !f.metadata().ok()?.is_file() {
-        return None;
-    }
-    let mut b = Vec::new();
-    std::io::Read::read_to_end(&mut std::io::Read::take(f, 64 << 20), &mut b).ok()?;
+    // (through input.rs: a FIFO is refused before it is opened, never blocks)
+    let b = crate::input::read_regular(p, 64 << 20, "a .json file").ok()?;
     let v: serde_json::Value = serde_json::from_slice(&b).ok()?;
     v.get("schema")?.as_str().map(str::to_string)
 }
