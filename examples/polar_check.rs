@@ -12,8 +12,8 @@
 //! cargo run --release --example polar_check -- MU ALPHA probe
 //! ```
 
-use brdfbake::integrate::dfg_kernel::Smith;
 use brdfbake::integrate::ggx_polar::ggx_split_sum;
+use brdfbake::integrate::ggx_polar::Smith;
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::dfg::split_sum_adaptive;
 use rayon::prelude::*;

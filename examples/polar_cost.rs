@@ -10,7 +10,7 @@
 //! cargo run --release --example polar_cost -- [REPEATS]   (default 20)
 //! ```
 
-use brdfbake::integrate::dfg_kernel::Smith;
+use brdfbake::integrate::ggx_polar::Smith;
 use brdfbake::integrate::ggx_polar::{ggx_albedo, ggx_split_sum};
 
 #[path = "common/cpu_time.rs"]

@@ -38,6 +38,7 @@ pub mod lut;
 pub mod merl;
 pub mod meta;
 pub mod model;
+pub mod numerics;
 pub mod numfmt;
 pub mod pipeline;
 pub mod preset;

@@ -286,17 +286,13 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
         // (src/table/albedo.rs `charlie_kernels`)
         format!(
-            "Charlie/Ashikhmin cloth kernels: first {}; where that declines (views within 1e-3 of the normal) or fails: alpha < 1/16 {}; 1/16 <= alpha <= 1 {}; where those fail: {}. Generic path: {method}",
+            "Charlie/Ashikhmin cloth kernel: {}; where that declines (views within 1e-3 of the normal) or fails, the generic path: {method}",
             crate::integrate::sheen_azimuth::METHOD,
-            crate::integrate::sheen_l::METHOD,
-            crate::integrate::sheen_wide::METHOD,
-            crate::integrate::dfg_kernel::METHOD
         )
     } else if kernel {
         format!(
-            "{} (GGX with Smith masking; where its estimate fails:) {}. Generic path: {method}",
+            "{} (GGX with Smith masking); where its estimate fails, the generic path: {method}",
             crate::integrate::ggx_polar::METHOD,
-            crate::integrate::dfg_kernel::METHOD
         )
     } else {
         method
@@ -324,9 +320,8 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             ""
         };
         format!(
-            "{method}. Cloth channel B {interpolated}alpha < 1/16: first {}; 1/16 <= alpha <= 1: first {}",
-            crate::integrate::sheen_l::METHOD,
-            crate::integrate::sheen_wide::METHOD
+            "{method}. Cloth channel B {interpolated}first {}; where that declines or fails, the generic path above",
+            crate::integrate::sheen_azimuth::METHOD,
         )
     } else {
         method

@@ -21,7 +21,7 @@ mod normal_view;
 mod reference;
 use normal_view::normal_view_split_sum;
 
-use brdfbake::integrate::dfg_kernel::Smith;
+use brdfbake::integrate::ggx_polar::Smith;
 use brdfbake::integrate::ggx_polar::{ggx_albedo, ggx_split_sum};
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::dfg::split_sum_adaptive;

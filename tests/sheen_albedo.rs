@@ -1,8 +1,7 @@
 //! The `sheen-charlie` preset's `sheen-e` table (Charlie + Ashikhmin albedo, F = 1,
-//! perceptual r ∈ [0.1, 1]) through the cloth kernels it now shares with the `filament-dfg`
-//! cloth channel (src/table/albedo.rs `charlie_kernels`: `sheen_l` for α < 1/16,
-//! `sheen_wide` up to α = 1, the half-vector kernel and the generic path as fallbacks),
-//! baked column by column with shared node data.
+//! perceptual r ∈ [0.1, 1]) through the cloth kernel it shares with the `filament-dfg`
+//! cloth channel (src/table/albedo.rs `charlie_kernels`: the θh kernel, the generic path as
+//! fallback), baked column by column with shared node data.
 //!
 //! Tolerances:
 //! * `tol = 1e-7`, the preset's (default) per-texel tolerance.
@@ -34,8 +33,8 @@ fn preset_table() -> TableSpec {
 
 /// Every texel of the table baked column by column (shared node data) is, bit for bit, the
 /// texel computed alone by `directional_albedo` (a pure function of (μ, α, tol)); at a 6×6
-/// subset — the grazing and normal columns, the narrowest (α = 0.01, `sheen_l`) and widest
-/// (α = 1, `sheen_wide`) rows and the rows on both sides of α = 1/16 included — the value is
+/// subset — the grazing and normal columns, the narrowest (α = 0.01) and widest (α = 1)
+/// rows and the rows on both sides of α = 1/16 included — the value is
 /// within its estimate of the reference and within the tolerance.
 #[test]
 fn sheen_preset_matches_reference_and_texels_alone() {

@@ -101,10 +101,17 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::adaptive::{integrate, Estimate, Tolerance};
-use super::dfg_kernel::{sin_cos_taylor, Smith};
 use super::tensor::{rules, MAX_LEVEL};
+use crate::numerics::sin_cos_taylor;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
+
+/// Which Smith masking term the GGX kernel uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Smith {
+    HeightCorrelated,
+    Separable,
+}
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
 pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail integrated with the rule's aliasing, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";

@@ -7,15 +7,12 @@ pub mod budget;
 pub mod cc1d;
 pub mod chebyshev;
 pub mod classic_lobes;
-pub mod dfg_kernel;
 pub mod gauss;
 pub mod ggx_polar;
 pub mod hemisphere;
 pub mod interp1d;
 pub mod monte_carlo;
 pub mod sheen_azimuth;
-pub mod sheen_l;
-pub mod sheen_wide;
 pub mod tensor;
 pub mod vgroove;
 

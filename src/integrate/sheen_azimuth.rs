@@ -45,7 +45,7 @@
 //! no texel declined.
 //!
 //! The closed form divides by `c²`: it declines (`Err(0)`) for `μv > 0.999`, where it would
-//! lose more than ~1e-10 to rounding, and leaves those views to the other kernels.
+//! lose more than ~1e-10 to rounding, and leaves those views to the generic path.
 //!
 //! Determinism: fixed nodes and summation order; what a column shares is a pure function of
 //! the view and the panel, so a texel gets the same bits alone or in its column.
@@ -55,6 +55,35 @@ use super::cc1d::{nested_cc_indexed, FIRST_LEVEL};
 use super::tensor::MAX_LEVEL;
 use std::f64::consts::{FRAC_PI_2, PI};
 
+/// What a table column (one view μ, every roughness) shares: the view cosine and the θh
+/// kernel's node data ([`AzimuthCache`]), filled as its texels ask for it. Each texel's result
+/// is the same bits with or without it.
+pub struct View {
+    /// The view cosine, at most 1.
+    mu: f64,
+    azimuth: std::cell::RefCell<AzimuthCache>,
+}
+
+impl View {
+    /// For view cosine `mu` (values above 1 are taken as 1).
+    pub fn new(mu: f64) -> View {
+        View {
+            mu: mu.min(1.0),
+            azimuth: Default::default(),
+        }
+    }
+
+    /// The view cosine (at most 1).
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// The θh cloth kernel's node data for this view.
+    pub fn azimuth(&self) -> &std::cell::RefCell<AzimuthCache> {
+        &self.azimuth
+    }
+}
+
 /// Views closer to the normal than this (`1 − μv`) are declined: the partial fractions
 /// cancel to ~`ε/c²`.
 const MIN_C: f64 = 1e-3;
@@ -62,8 +91,8 @@ const MIN_C: f64 = 1e-3;
 /// What this path does, for documentation and the benchmarks.
 pub const METHOD: &str = "cloth as a 1D integral over theta_h (src/integrate/sheen_azimuth.rs): the azimuthal integral of V mu_l (v.h) in closed form (partial fractions), nested Clenshaw-Curtis on three panels with square-root warps at the arc's end points, cut below where the lobe is under tol/1000";
 
-/// The view's constants for K(θh) (not [`View`](super::dfg_kernel::View), the column-shared
-/// view data of the table code).
+/// The view's constants for K(θh) (not [`View`], the column-shared view data of the table
+/// code).
 struct Azimuth {
     mu_v: f64,
     sv: f64,

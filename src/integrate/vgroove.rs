@@ -46,9 +46,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::adaptive::Estimate;
-use super::dfg_kernel::exp_poly;
 use super::hemisphere::{integrate_over_l, tan_theta_h_max, LobeWarp, Node};
 use super::tensor::{inner_sums, refine, rules, PhiWarp, Scratch, MAX_LEVEL};
+use crate::numerics::exp_poly;
 use std::cell::RefCell;
 use std::f64::consts::FRAC_PI_2;
 

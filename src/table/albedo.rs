@@ -4,12 +4,11 @@
 
 use super::{TableKind, TableSpec, TexelResult};
 use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
-use crate::integrate::dfg_kernel::{Column, View};
 use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
+use crate::integrate::sheen_azimuth::{self, View};
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::integrate::{integrate, Tolerance};
-use crate::integrate::{sheen_azimuth, sheen_l, sheen_wide};
 use crate::model::{Brdf, Masking};
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -36,12 +35,12 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
 /// E(μ) for one BRDF, to absolute tolerance `tol`. Returns `([value], [error], evaluations)`.
 ///
 /// GGX with Smith masking and Charlie with Ashikhmin's visibility (F = 1, no diffuse lobe,
-/// see [`uses_kernel`]) use the specialised kernels first (GGX: the 1D polar one,
-/// [`ggx_polar`](crate::integrate::ggx_polar), then the 2D one of
-/// [`dfg_kernel`](crate::integrate::dfg_kernel)); other smooth models, and texels where a
-/// kernel's estimate does not reach the tolerance, the fast tensor rule
-/// ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
-/// V-groove term's kinks go to the adaptive one directly.
+/// see [`uses_kernel`]) use their specialised kernels first (GGX: the 1D polar one,
+/// [`ggx_polar`](crate::integrate::ggx_polar); Charlie: [`charlie_kernels`]); other smooth
+/// models, and texels where a kernel's estimate does not reach the tolerance, the fast tensor
+/// rule ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
+/// V-groove term's kinks go to its branch-split rule
+/// ([`vgroove`](crate::integrate::vgroove)), then the adaptive integrator.
 pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
     directional_albedo_in(brdf, mu, tol, None)
 }
@@ -124,21 +123,10 @@ fn directional_albedo_in(
     if let Some(s) = brdf.specular.as_ref().filter(|s| {
         brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
     }) {
-        use crate::integrate::dfg_kernel::ggx_split_sum;
         use crate::model::NdfKind;
         if let Some(smith) = super::dfg::kernel_smith(s) {
             match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
                 Ok(e) => return (e.value, e.error, e.evals + spent),
-                Err(n) => spent += n,
-            }
-            match ggx_split_sum(&Column::new(mu), s.ndf.alpha(), smith, 0.5 * tol) {
-                Ok(e) => {
-                    return (
-                        [e.value[0] + e.value[1]],
-                        [e.error[0] + e.error[1]],
-                        e.evals + spent,
-                    )
-                }
                 Err(n) => spent += n,
             }
         } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
@@ -160,58 +148,24 @@ fn directional_albedo_in(
     (e.value, e.error, e.evals + spent)
 }
 
-/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by
-/// the cloth kernels, as the `filament-dfg` cloth channel computes it: first
-/// [`sheen_azimuth`] (a 1D integral over θh with the azimuthal integral in closed form; it
-/// shares its node data for wide lobes along the view's column, and declines views within
-/// 1e-3 of the normal), then the light-direction kernels — [`sheen_l`] for α <
-/// [`sheen_l::MAX_ALPHA`], [`sheen_wide`] for α up to 1 (with the view's shared node data) —,
-/// then the half-vector kernel
-/// ([`charlie_sheen_shared`](crate::integrate::dfg_kernel::charlie_sheen_shared));
-/// `Err(evaluations spent)` if none reaches `tol` (the caller falls back to the generic
-/// path). The same bits whether `view` is shared by a column or the texel's own.
+/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by the
+/// cloth kernel, as the `filament-dfg` cloth channel computes it: [`sheen_azimuth`] (a 1D
+/// integral over θh with the azimuthal integral in closed form; it shares its node data for
+/// wide lobes along the view's column, and declines views within 1e-3 of the normal);
+/// `Err(evaluations spent)` where it declines or does not reach `tol` (the caller falls back
+/// to the generic path). The same bits whether `view` is shared by a column or the texel's
+/// own.
 pub(crate) fn charlie_kernels(
     view: &View,
     alpha: f64,
     tol: f64,
 ) -> Result<crate::integrate::Estimate<1>, u64> {
-    let mu = view.mu();
-    let spent0 = match sheen_azimuth::charlie_sheen_azimuth_shared(
-        mu,
+    sheen_azimuth::charlie_sheen_azimuth_shared(
+        view.mu(),
         alpha,
         tol,
         &mut view.azimuth().borrow_mut(),
-    ) {
-        Ok(e) => return Ok(e),
-        Err(n) => n,
-    };
-    let first = if alpha < sheen_l::MAX_ALPHA {
-        Some(sheen_l::charlie_sheen_l(mu, alpha, tol))
-    } else if alpha <= sheen_wide::MAX_ALPHA {
-        let mut cache = view.wide().borrow_mut();
-        Some(sheen_wide::charlie_sheen_wide_shared(
-            mu, alpha, tol, &mut cache,
-        ))
-    } else {
-        None
-    };
-    let spent = match first {
-        Some(Ok(e)) => return Ok(e),
-        Some(Err(n)) => n + spent0,
-        None => spent0,
-    };
-    match crate::integrate::dfg_kernel::charlie_sheen_shared(
-        view.column(),
-        Some(view.cache()),
-        alpha,
-        tol,
-    ) {
-        Ok(mut e) => {
-            e.evals += spent;
-            Ok(e)
-        }
-        Err(n) => Err(n + spent),
-    }
+    )
 }
 
 /// Whether an albedo table is baked column by column ([`column_fn`]): Charlie/Ashikhmin

@@ -15,10 +15,11 @@
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
-use crate::integrate::dfg_kernel::{self, Column, Smith, View};
 use crate::integrate::ggx_polar;
+use crate::integrate::ggx_polar::Smith;
 use crate::integrate::hemisphere::{integrate_over_l, Node};
 use crate::integrate::interp1d;
+use crate::integrate::sheen_azimuth::View;
 use crate::integrate::tensor::integrate_over_l_smooth;
 use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
@@ -99,35 +100,15 @@ pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
         )
 }
 
-/// [`split_sum`] through the specialised GGX kernels where they apply — the 1D polar one
-/// ([`ggx_polar`]) first, then the 2D one of [`dfg_kernel`] with the view setup of `col`
-/// (whose μ must be `mu`) — and the generic path where they do not apply or their
-/// estimates do not reach `tol` (the kernels' evaluations are counted either way).
-pub fn split_sum_column(
-    spec: &Specular,
-    col: &Column,
-    mu: f64,
-    tol: f64,
-) -> ([f64; 2], [f64; 2], u64) {
-    split_sum_lazy(spec, mu, tol, || col)
-}
-
-/// [`split_sum_column`] with the view setup asked for only where the polar kernel gives up.
-fn split_sum_lazy<'a>(
-    spec: &Specular,
-    mu: f64,
-    tol: f64,
-    col: impl FnOnce() -> &'a Column,
-) -> ([f64; 2], [f64; 2], u64) {
+/// [`split_sum`] through the specialised GGX kernel where it applies — the 1D polar one
+/// ([`ggx_polar`]) — and the generic path where it does not apply or its estimate does not
+/// reach `tol` (the kernel's evaluations are counted either way).
+pub fn split_sum_kernels(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64) {
     let mut spent = 0;
     if let Some(smith) = kernel_smith(spec) {
         match ggx_polar::ggx_split_sum(mu, spec.ndf.alpha(), smith, tol) {
             Ok(e) => return (e.value, e.error, e.evals),
             Err(n) => spent = n,
-        }
-        match dfg_kernel::ggx_split_sum(col(), spec.ndf.alpha(), smith, tol) {
-            Ok(e) => return (e.value, e.error, e.evals + spent),
-            Err(n) => spent += n,
         }
     }
     let (v, e, n) = split_sum(spec, mu, tol);
@@ -194,7 +175,7 @@ impl Ctx {
     fn pair_of(&self, s: &Specular, view: &View, tol: f64) -> TexelResult {
         // each channel of the pair below is a sum/difference of the two integrals, so its
         // error bound is the sum of theirs
-        let ([a, b], [ea, eb], n) = split_sum_lazy(s, view.mu(), tol, || view.column());
+        let ([a, b], [ea, eb], n) = split_sum_kernels(s, view.mu(), tol);
         match self.layout {
             DfgLayout::Karis => TexelResult {
                 value: vec![a, b],

@@ -49,9 +49,8 @@
 
 use super::dfg::{as_sample, cloth_sample, cloth_texel, Ctx, Dense};
 use super::TableSpec;
-use crate::integrate::dfg_kernel::View;
 use crate::integrate::interp1d::{self, LineValues, Sample};
-use crate::integrate::{sheen_l, sheen_wide};
+use crate::integrate::sheen_azimuth::View;
 use crate::lut::Axis;
 use rayon::prelude::*;
 
@@ -149,6 +148,11 @@ const GRID_MIN_ROWS: usize = 24;
 /// evaluations by columns against 1.2 M texel by texel; at 512², 128 rows: 5.6 M against
 /// 20.4 M). Below it the rows' texels below the break are computed one by one.
 const STRIP_MIN_ROWS: usize = 64;
+
+/// The cloth channel's narrow lobes (α below this) and wide ones (α up to 1) are
+/// interpolated differently: narrow ones along rows in √μ, or on the narrow strip and grid
+/// below; wide ones along columns (or on a grid) in √α.
+const CLOTH_NARROW_BELOW_ALPHA: f64 = 1.0 / 16.0;
 
 /// The narrow cloth lobes from this α up go on a grid above the strip when they hold at
 /// least [`STRIP_MIN_ROWS`] rows: at 512² their 112 rows cost 2.2 M evaluations above
@@ -298,20 +302,20 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
             strip: None,
         };
     }
-    let wide = |a: f64| (sheen_l::MAX_ALPHA..=sheen_wide::MAX_ALPHA).contains(&a);
+    let wide = |a: f64| (CLOTH_NARROW_BELOW_ALPHA..=1.0).contains(&a);
     let wide = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows_where(&wide));
     let (cloth_grid, cloth_columns) = if nx >= GRID_MIN_COLUMNS {
         (wide, None)
     } else {
         (None, wide)
     };
-    let narrow = rows_where(&|a| a < sheen_l::MAX_ALPHA);
+    let narrow = rows_where(&|a| a < CLOTH_NARROW_BELOW_ALPHA);
     let strip = if narrow.len() >= STRIP_MIN_ROWS {
         RoughnessLine::new(ay, RoughnessVar::Ln, narrow)
     } else {
         None
     };
-    let band = rows_where(&|a| (NARROW_GRID_MIN_ALPHA..sheen_l::MAX_ALPHA).contains(&a));
+    let band = rows_where(&|a| (NARROW_GRID_MIN_ALPHA..CLOTH_NARROW_BELOW_ALPHA).contains(&a));
     let narrow_grid = if strip.is_some() && band.len() >= STRIP_MIN_ROWS && nx >= GRID_MIN_COLUMNS {
         RoughnessLine::new(ay, RoughnessVar::Sqrt, band)
     } else {

@@ -1,11 +1,10 @@
-//! What the cloth kernels' tests (tests/cloth_lspace.rs, tests/cloth_azimuth.rs) compare
-//! with, and how. The including test crate declares `mod reference` (common/reference.rs).
+//! What the cloth kernel's tests (tests/cloth_azimuth.rs) compare with, and how. The including test crate declares `mod reference` (common/reference.rs).
 
 use super::reference::{self, Est, RefModel};
 use brdfbake::model::{Masking, NdfKind};
 use brdfbake::table::dfg::sheen_albedo_adaptive;
 
-/// The reference validates Charlie lobes down to this α (tests/dfg_kernel.rs); narrower
+/// The reference validates Charlie lobes down to this α (tests/accuracy.rs); narrower
 /// lobes are compared with the library's adaptive integrator instead.
 pub const REF_MIN_ALPHA: f64 = 0.01;
 /// The independent reference's tolerance.

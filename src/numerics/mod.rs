@@ -1,0 +1,6 @@
+//! Small shared numerics that know nothing of quadrature or BRDFs: a leaf both the rules and
+//! the kernels may use.
+
+pub mod poly;
+
+pub use poly::{exp_poly, sin_cos_taylor};
