@@ -13,8 +13,8 @@
 //! `cargo test` does not run these (only `cargo bench` or `cargo test --benches` does).
 //! Whole-process timings against the targets: `scripts/bench.sh`.
 
-use brdfbake::integrate::hemisphere::integrate_over_l;
-use brdfbake::integrate::monte_carlo::{estimate_over_l, Sampling};
+use brdfbake::hemisphere::integrate_over_l;
+use brdfbake::hemisphere::monte_carlo::{estimate_over_l, Sampling};
 use brdfbake::model::{Brdf, Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::albedo::{average_albedo, directional_albedo};
 use brdfbake::table::classic::{fast_albedo, view_albedo, ClassicModel};

@@ -1,4 +1,4 @@
-//! Compares the classic-albedo fast path (`src/integrate/classic_lobes.rs`) with the
+//! Compares the classic-albedo fast path (`src/kernels/classic_lobes.rs`) with the
 //! energy-law integrator at a 100× tighter tolerance over a grid of views and parameters,
 //! and prints per model: texels, fallbacks, evaluations per texel (mean / max), the largest
 //! |fast − laws| and the largest ratio of that difference to the two estimates.

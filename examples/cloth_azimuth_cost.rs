@@ -1,4 +1,4 @@
-//! Cost of the θh cloth kernel (src/integrate/sheen_azimuth.rs) over every texel of a
+//! Cost of the θh cloth kernel (src/kernels/sheen_azimuth.rs) over every texel of a
 //! 128² filament-dfg cloth channel (μ and perceptual roughness at texel centres, α = r²),
 //! on one thread, texel by texel (no node data shared) and column by column (each view's
 //! node data shared by its roughnesses, as the bake does): milliseconds, evaluations, and
@@ -8,7 +8,7 @@
 //! cargo run --release --example cloth_azimuth_cost
 //! ```
 
-use brdfbake::integrate::sheen_azimuth::{
+use brdfbake::kernels::sheen_azimuth::{
     charlie_sheen_azimuth, charlie_sheen_azimuth_shared, AzimuthCache,
 };
 use std::time::Instant;

@@ -3,8 +3,8 @@
 //! `cargo run --release --example fastpath_check -- [stride] [size] [tol]`
 #![allow(clippy::needless_range_loop)]
 
-use brdfbake::integrate::hemisphere::integrate_over_l;
-use brdfbake::integrate::tensor::{integrate_over_l_cc, InnerWarp};
+use brdfbake::hemisphere::integrate_over_l;
+use brdfbake::hemisphere::tensor::{integrate_over_l_cc, InnerWarp};
 use brdfbake::model::fresnel::schlick_weight;
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use rayon::prelude::*;
@@ -34,12 +34,12 @@ fn main() {
                 masking: Masking::Ashikhmin,
                 fresnel: Fresnel::None,
             };
-            let gs = |n: &brdfbake::integrate::hemisphere::Node| {
+            let gs = |n: &brdfbake::hemisphere::Node| {
                 let f = spec.cosine_weighted_with(n, 1.0);
                 let fc = schlick_weight(n.v_dot_h);
                 [f * (1.0 - fc), f * fc]
             };
-            let gc = |n: &brdfbake::integrate::hemisphere::Node| [sheen.cosine_weighted(n)];
+            let gc = |n: &brdfbake::hemisphere::Node| [sheen.cosine_weighted(n)];
             let rs = integrate_over_l(mu, spec.ndf.warp(), tol * 1e-3, gs);
             let rc = integrate_over_l(mu, sheen.ndf.warp(), tol * 1e-3, gc);
             let fs = integrate_over_l_cc(mu, InnerWarp::for_ndf(&spec.ndf), tol, gs);

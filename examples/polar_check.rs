@@ -1,4 +1,4 @@
-//! Accuracy of the 1D polar GGX split-sum kernel (src/integrate/ggx_polar.rs) on a dense
+//! Accuracy of the 1D polar GGX split-sum kernel (src/kernels/ggx_polar.rs) on a dense
 //! grid against the adaptive 2D integrator (`dfg::split_sum_adaptive`) at 1e-12 (at μ = 1
 //! against tests/common/normal_view.rs, where the 2D integrator's estimate is unreliable):
 //! for each point and channel, |kernel − reference| must be within the kernel's
@@ -12,8 +12,8 @@
 //! cargo run --release --example polar_check -- MU ALPHA probe
 //! ```
 
-use brdfbake::integrate::ggx_polar::ggx_split_sum;
-use brdfbake::integrate::ggx_polar::Smith;
+use brdfbake::kernels::ggx_polar::ggx_split_sum;
+use brdfbake::kernels::ggx_polar::Smith;
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::dfg::split_sum_adaptive;
 use rayon::prelude::*;

@@ -1,4 +1,4 @@
-//! Cost of the 1D polar GGX split-sum kernel (src/integrate/ggx_polar.rs) per call, on one
+//! Cost of the 1D polar GGX split-sum kernel (src/kernels/ggx_polar.rs) per call, on one
 //! thread: evaluations (outer θl lines and inner azimuthal nodes together), the outer lines
 //! alone (`ggx_albedo`'s count: one evaluation per line) and the thread's CPU time per call,
 //! over a grid of views μ and perceptual roughness r (α = r²), height-correlated Smith, at
@@ -10,8 +10,8 @@
 //! cargo run --release --example polar_cost -- [REPEATS]   (default 20)
 //! ```
 
-use brdfbake::integrate::ggx_polar::Smith;
-use brdfbake::integrate::ggx_polar::{ggx_albedo, ggx_split_sum};
+use brdfbake::kernels::ggx_polar::Smith;
+use brdfbake::kernels::ggx_polar::{ggx_albedo, ggx_split_sum};
 
 #[path = "common/cpu_time.rs"]
 mod cpu_time;

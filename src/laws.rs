@@ -18,14 +18,14 @@
 //! dωo = 4(ωi·h) dωh (Walter et al. 2007, eq. 14), in a frame where ωi lies in the xz
 //! plane (the model is evaluated back in the surface frame), up to the exact horizon
 //! θh < π/4 + ψ/2, tan ψ = tan θi cos φh (the same geometry as
-//! [`crate::integrate::hemisphere`]), with the inner variable u = asinh(tan θh / w), w the
+//! [`crate::hemisphere`]), with the inner variable u = asinh(tan θh / w), w the
 //! model's lobe width, and nested adaptive Gauss–Kronrod G7/K15 whose |K15 − G7| error
 //! estimates are summed into the reported error.
 
-use crate::integrate::adaptive::{integrate, Tolerance};
-use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
-use crate::integrate::hemisphere::tan_theta_h_max;
+use crate::hemisphere::tan_theta_h_max;
 use crate::model::classic::{dir, Dir, Reflectance};
+use crate::quadrature::adaptive::{integrate, Tolerance};
+use crate::quadrature::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A directional albedo with its estimated absolute error.
@@ -46,7 +46,7 @@ fn rot_z(w: Dir, (s, c): (f64, f64)) -> Dir {
 /// to the absolute tolerance `tol` (estimated); see the module documentation.
 /// The tolerance is raised to the model's [`Reflectance::tolerance_floor`].
 /// All its integrals share one budget of
-/// [`INTEGRAL_EVAL_BUDGET`](crate::integrate::budget::INTEGRAL_EVAL_BUDGET) evaluations
+/// [`crate::quadrature::budget::INTEGRAL_EVAL_BUDGET`] evaluations
 /// (≈ 1 s): an integrand that cannot reach `tol` stops there and reports the error reached.
 pub fn directional_albedo(m: &dyn Reflectance, theta_i: f64, phi_i: f64, tol: f64) -> Albedo {
     with_budget(INTEGRAL_EVAL_BUDGET, || {

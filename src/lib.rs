@@ -1,9 +1,10 @@
 //! brdfbake: exact BRDF lookup tables for real-time renderers.
 //!
 //! The flow runs one way: a preset ([`preset`]) is validated into [`TableSpec`]s, each is
-//! baked ([`table`]) by quadrature ([`integrate`]) of the physics ([`model`]) into a [`Lut`],
+//! baked ([`table`]) by the rules of [`quadrature`] over the [`hemisphere`], fed by the
+//! model-specific [`kernels`], of the physics ([`model`]) into a [`Lut`],
 //! encoded by pure encoders ([`encode`]) with its metadata ([`meta`]), and written
-//! atomically by [`write`], the only module that touches the disk.
+//! atomically by [`write`](mod@write), the only module that touches the disk.
 //!
 //! ```
 //! use brdfbake::lut::{Axis, Convention, Quantity};
@@ -31,8 +32,9 @@
 pub mod cli;
 pub mod digest;
 pub mod encode;
+pub mod hemisphere;
 pub mod input;
-pub mod integrate;
+pub mod kernels;
 pub mod laws;
 pub mod lut;
 pub mod merl;
@@ -43,6 +45,7 @@ pub mod numfmt;
 pub mod pipeline;
 pub mod preset;
 pub mod presets;
+pub mod quadrature;
 pub mod readback;
 pub mod report;
 pub mod resources;

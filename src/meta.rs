@@ -242,7 +242,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             } else {
                 ""
             };
-            format!("{outer}{}", crate::integrate::tensor::METHOD)
+            format!("{outer}{}", crate::hemisphere::tensor::METHOD)
         }
         // V-groove masking with an NDF: the branch-split tensor rule
         _ => {
@@ -251,14 +251,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
                 TableKind::KullaConty => "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. ",
                 _ => "",
             };
-            format!("{outer}{}", crate::integrate::vgroove::METHOD)
+            format!("{outer}{}", crate::kernels::vgroove::METHOD)
         }
     };
     let method =
         if spec.kind == TableKind::Dfg && spec.cloth && spec.model.masking == Masking::VGroove {
             format!(
                 "{method}. Cloth channel B: {}",
-                crate::integrate::tensor::METHOD
+                crate::hemisphere::tensor::METHOD
             )
         } else {
             method
@@ -287,12 +287,12 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         // (src/table/albedo.rs `charlie_kernels`)
         format!(
             "Charlie/Ashikhmin cloth kernel: {}; where that declines (views within 1e-3 of the normal) or fails, the generic path: {method}",
-            crate::integrate::sheen_azimuth::METHOD,
+            crate::kernels::sheen_azimuth::METHOD,
         )
     } else if kernel {
         format!(
             "{} (GGX with Smith masking); where its estimate fails, the generic path: {method}",
-            crate::integrate::ggx_polar::METHOD,
+            crate::kernels::ggx_polar::METHOD,
         )
     } else {
         method
@@ -308,7 +308,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
     let method = if spec.kind == TableKind::Dfg && crate::table::dfg_lines::interpolated(spec) {
         format!(
             "Split-sum channels by lines (src/table/dfg_lines.rs): on tables of at least 128 columns, the rows with alpha >= 1/64, and those of [1/256, 1/64) where that band holds at least 24 rows, on grids: interpolated across the table in x = sqrt(mu) from whole columns (at tolerance/8), each column interpolated along the roughness axis in y = ln(alpha) (nodes at tolerance/4 of the column's); every other row along the row in x = sqrt(mu), cut at mu = 0.073 too. Lines across the table are first cut at mu = 0.01 (texels closer to grazing: usually computed directly, a column at a time on grids). Interpolation: {} Each quadrature: {method}",
-            crate::integrate::interp1d::METHOD
+            crate::quadrature::interp1d::METHOD
         )
     } else {
         method
@@ -321,7 +321,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         };
         format!(
             "{method}. Cloth channel B {interpolated}first {}; where that declines or fails, the generic path above",
-            crate::integrate::sheen_azimuth::METHOD,
+            crate::kernels::sheen_azimuth::METHOD,
         )
     } else {
         method

@@ -755,8 +755,8 @@ pub fn exact_at(
             crate::table::classic::texel_fn(&spec)
         }
     };
-    let r = crate::integrate::budget::with_budget(
-        crate::integrate::budget::INTEGRAL_EVAL_BUDGET,
+    let r = crate::quadrature::budget::with_budget(
+        crate::quadrature::budget::INTEGRAL_EVAL_BUDGET,
         || f([0, 0, 0]),
     );
     Ok((r.value, r.error))

@@ -118,11 +118,11 @@ const EVALS_PER_NUMERIC_G1: f64 = 1e6;
 /// tolerance (1e-7), measured with `scripts/bench.sh` on the default presets (evaluations ÷
 /// texels, rounded up): smooth albedo 1,473 (`energy-albedo`/e before the GGX polar kernel),
 /// V-groove albedo 2,076 (`cook-torrance-1982`/albedo; 12,985 before its fast path,
-/// [`vgroove`](crate::integrate::vgroove); its E_avg 83,000–190,000 per roughness), average
+/// [`vgroove`](crate::kernels::vgroove); its E_avg 83,000–190,000 per roughness), average
 /// albedo 159,453 per roughness (`e-avg` before the polar kernel), cloth channel 1,750
 /// (`filament-dfg` − `karis-envbrdf`), Fresnel albedo 1,111, dielectric BTDF 19,551 (all
 /// 2026-11-29). GGX with Smith masking goes through the 1D polar kernel
-/// (src/integrate/ggx_polar.rs; 2026-11-29, 23:00 UTC): albedo 83 (`energy-albedo`/e),
+/// (src/kernels/ggx_polar.rs; 2026-11-29, 23:00 UTC): albedo 83 (`energy-albedo`/e),
 /// average albedo 6,965 per roughness (`e-avg`), DFG 915 (`karis-envbrdf`). Grazing views
 /// and near-delta lobes cost more, smooth wide lobes less; the estimate is a guide, the
 /// run-time check of the same limit ([`Deadline`]) is the guarantee.
@@ -135,7 +135,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
     // Charlie + Ashikhmin albedo through the cloth kernels (src/table/albedo.rs
     // `charlie_kernels`, column by column): 78 per texel with the θh kernel
-    // (src/integrate/sheen_azimuth.rs; `sheen-charlie`, 80,305 evaluations over 1,024
+    // (src/kernels/sheen_azimuth.rs; `sheen-charlie`, 80,305 evaluations over 1,024
     // texels, 2026-11-30), most of them an `exp` on node data the column shares; 1,359 with
     // the light-direction kernels, 1,756 with the half-vector kernel alone
     let cloth_albedo = crate::table::albedo::uses_kernel(&spec.model)
@@ -160,7 +160,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // cloth: 1,585 per texel measured with its light-direction path for narrow lobes
         // (cloth4), 1,286 with the one for wide lobes too (cloth5: filament-dfg 36,066,234
         // evaluations with cloth, 14,992,751 without, over 16,384 texels). GGX rows
-        // interpolated in √μ (src/integrate/interp1d.rs) cost per row about 40,000 + 85 per
+        // interpolated in √μ (src/quadrature/interp1d.rs) cost per row about 40,000 + 85 per
         // texel (measured: 50,700 per 128-texel row, 82,800 per 512-texel row of
         // karis-envbrdf, 2026-11-30), never more than texel by texel. The cloth channel
         // interpolated too (narrow lobes along rows, wide ones along columns): filament-dfg
@@ -222,7 +222,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         }
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
-        // Models with the 1D fast path (src/integrate/classic_lobes.rs) measured on the
+        // Models with the 1D fast path (src/kernels/classic_lobes.rs) measured on the
         // `classic-albedo` preset (2026-11-30): blinn-phong 46, modified-phong 29 (phong the
         // same), ward-gmd 86 per texel; each evaluation costs a few transcendental
         // functions (~0.2-0.6 us), more than the 100 ns assumed.

@@ -1,4 +1,4 @@
-//! The 1D fast path of the classic-albedo tables (`src/integrate/classic_lobes.rs`, used by
+//! The 1D fast path of the classic-albedo tables (`src/kernels/classic_lobes.rs`, used by
 //! `table::classic::fast_albedo`) against the energy-law integrator it replaces (nested
 //! adaptive Gauss–Kronrod over the half vector, a different parameterization and rule) at
 //! 100× tighter tolerance, and against the independent l-space reference integrator of

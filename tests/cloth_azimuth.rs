@@ -1,5 +1,5 @@
 //! The cloth kernel in θh with the azimuthal integral in closed form
-//! (src/integrate/sheen_azimuth.rs) — the first choice for every cloth texel of a dfg table
+//! (src/kernels/sheen_azimuth.rs) — the first choice for every cloth texel of a dfg table
 //! and of Charlie albedo tables — against the independent reference
 //! (tests/common/reference.rs: l-space polar coordinates with geometric breakpoints,
 //! adaptive Gauss–Legendre, textbook Charlie and Ashikhmin formulas) for α ≥ 0.01, and below
@@ -19,7 +19,7 @@ mod cloth_reference;
 #[path = "common/reference.rs"]
 mod reference;
 
-use brdfbake::integrate::sheen_azimuth::charlie_sheen_azimuth;
+use brdfbake::kernels::sheen_azimuth::charlie_sheen_azimuth;
 use cloth_reference::{cloth_reference, fails};
 use rayon::prelude::*;
 

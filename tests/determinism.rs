@@ -1,5 +1,5 @@
 //! Byte-for-byte determinism of every output format across runs and thread counts. (The
-//! GGX dfg table's 40-texel rows are long enough to be interpolated: src/integrate/interp1d.rs.)
+//! GGX dfg table's 40-texel rows are long enough to be interpolated: src/quadrature/interp1d.rs.)
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -7,7 +7,7 @@
 //! grazing views, and the widest and narrowest lobes.
 //!
 //! Tolerance argument: the integrator's value is within its own error estimate of the truth
-//! (the estimate is an over-estimate, see `integrate/cc1d.rs`), the reference's within its
+//! (the estimate is an over-estimate, see `quadrature/cc1d.rs`), the reference's within its
 //! estimate; so |value − reference| ≤ estimate + reference estimate, and the estimate itself
 //! must be within the requested 1e-6.
 

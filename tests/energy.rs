@@ -3,7 +3,7 @@
 //! and the identities they must satisfy.
 //!
 //! Tolerances: a baked value differs from the truth by at most its table's own error
-//! estimate (`Lut::error_estimate`, an over-estimate |K15 − G7|, see `integrate/adaptive.rs`)
+//! estimate (`Lut::error_estimate`, an over-estimate |K15 − G7|, see `quadrature/adaptive.rs`)
 //! plus f32 rounding (relative 2⁻²⁴); the reference is run at a target far below that and
 //! its own estimate is added.
 

@@ -1,4 +1,4 @@
-//! The fast tensor rule (src/integrate/tensor.rs) against the adaptive Gauss–Kronrod
+//! The fast tensor rule (src/hemisphere/tensor.rs) against the adaptive Gauss–Kronrod
 //! integrator it replaces for smooth integrands (kept as the reference and the fallback).
 //!
 //! Tolerances:
@@ -12,7 +12,7 @@
 //! tests/accuracy.rs (which, through `split_sum`, `sheen_albedo` and `directional_albedo`,
 //! now also checks the fast path against that reference).
 
-use brdfbake::integrate::tensor::{integrate_over_l_cc, InnerWarp};
+use brdfbake::hemisphere::tensor::{integrate_over_l_cc, InnerWarp};
 use brdfbake::lut::{Axis, Convention, Quantity};
 use brdfbake::model::fresnel::schlick_weight;
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, RoughnessQuantity, Specular};
@@ -181,7 +181,7 @@ fn fast_path_is_used_and_its_estimates_hold() {
         .map(|&(mu, alpha)| {
             let s = spec(NdfKind::Ggx, alpha, Masking::SmithHeightCorrelated);
             let sheen = spec(NdfKind::Charlie, alpha, Masking::Ashikhmin);
-            let g = |n: &brdfbake::integrate::hemisphere::Node| {
+            let g = |n: &brdfbake::hemisphere::Node| {
                 let f = s.cosine_weighted_with(n, 1.0);
                 let fc = schlick_weight(n.v_dot_h);
                 [f * (1.0 - fc), f * fc]

@@ -1,4 +1,4 @@
-//! The 1D polar GGX kernel (src/integrate/ggx_polar.rs) against the independent reference
+//! The 1D polar GGX kernel (src/kernels/ggx_polar.rs) against the independent reference
 //! (tests/common/reference.rs: l-space, adaptive Gauss–Legendre, textbook formulas, no
 //! closed-form azimuthal integral), over views μ = 1e-3 … 1 and roughness α = 1e-3 … 1 (the
 //! reference's validated range), and beyond it (μ down to 1/1024, α down to (1/1024)², the
@@ -21,8 +21,8 @@ mod normal_view;
 mod reference;
 use normal_view::normal_view_split_sum;
 
-use brdfbake::integrate::ggx_polar::Smith;
-use brdfbake::integrate::ggx_polar::{ggx_albedo, ggx_split_sum};
+use brdfbake::kernels::ggx_polar::Smith;
+use brdfbake::kernels::ggx_polar::{ggx_albedo, ggx_split_sum};
 use brdfbake::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::dfg::split_sum_adaptive;
 use rayon::prelude::*;

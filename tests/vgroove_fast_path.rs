@@ -1,4 +1,4 @@
-//! The V-groove fast path (src/integrate/vgroove.rs: the tensor rule on the smooth branches
+//! The V-groove fast path (src/kernels/vgroove.rs: the tensor rule on the smooth branches
 //! of Cook–Torrance's masking term) against the independent reference integrator
 //! (`tests/common/reference.rs`: l-space polar coordinates, adaptive Gauss–Legendre, the
 //! V-groove kink in l-space as an explicit breakpoint, BRDF terms re-implemented from their
@@ -16,8 +16,8 @@
 #[path = "common/reference.rs"]
 mod reference;
 
-use brdfbake::integrate::hemisphere::Node;
-use brdfbake::integrate::vgroove::{
+use brdfbake::hemisphere::Node;
+use brdfbake::kernels::vgroove::{
     beckmann_vgroove_albedo, integrate_over_l_kinked, integrate_over_l_vgroove_cc, TailCut,
 };
 use brdfbake::model::fresnel::dielectric_one_division;

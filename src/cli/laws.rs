@@ -46,7 +46,7 @@ pub struct LawsArgs {
 
 /// Typical integrand evaluations of one directional albedo, for the time estimate (the
 /// models of `laws` at the default tolerance take 10³–10⁵; one is bounded by
-/// [`INTEGRAL_EVAL_BUDGET`](crate::integrate::budget::INTEGRAL_EVAL_BUDGET) in any case).
+/// [`INTEGRAL_EVAL_BUDGET`](crate::quadrature::budget::INTEGRAL_EVAL_BUDGET) in any case).
 const EVALS_PER_ALBEDO: f64 = 1e5;
 
 /// One row of `--albedo-table`: E at the measured azimuths and averaged over φi.

@@ -5,7 +5,7 @@
 use super::fresnel::Fresnel;
 use super::masking::Masking;
 use super::ndf::Ndf;
-use crate::integrate::hemisphere::{LobeWarp, Node};
+use crate::hemisphere::{LobeWarp, Node};
 use std::f64::consts::PI;
 
 /// A microfacet specular lobe.

@@ -21,7 +21,7 @@
 //! table); at F0 = 1 the compensated albedo E·(1 + (1 − E)/E) is exactly 1.
 
 use super::fresnel::Fresnel;
-use crate::integrate::{integrate, Tolerance};
+use crate::quadrature::{integrate, Tolerance};
 use std::f64::consts::PI;
 
 /// F_avg of Schlick's Fresnel in closed form: 2∫₀¹ (F0 + (1 − F0)(1 − μ)⁵) μ dμ

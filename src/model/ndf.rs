@@ -11,9 +11,9 @@
 //! derived numerically from D by Smith's normalization, Heitz 2014 §5) and the warp that
 //! the hemisphere quadrature should use for its lobe.
 
-use crate::integrate::adaptive::{integrate1, Tolerance};
-use crate::integrate::chebyshev::ChebFn;
-use crate::integrate::hemisphere::LobeWarp;
+use crate::hemisphere::LobeWarp;
+use crate::quadrature::adaptive::{integrate1, Tolerance};
+use crate::quadrature::chebyshev::ChebFn;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::{Arc, OnceLock};
 
@@ -404,7 +404,7 @@ pub fn gaussian_normalization(m: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::adaptive::Tolerance;
+    use crate::quadrature::adaptive::Tolerance;
 
     fn normalization(ndf: &Ndf) -> f64 {
         // ∫ D cos θ dω = 2π ∫ D(θ) cos θ sin θ dθ, θ = atan(α sinh u) for peaked lobes

@@ -3,7 +3,7 @@
 //!
 //! * brdfbake's method — the nested adaptive Gauss–Kronrod (G7/K15) quadrature the tables
 //!   use ([`crate::table::albedo`], [`crate::table::dfg`]), over a sweep of tolerances — with
-//! * importance-sampled Monte Carlo on Hammersley points ([`crate::integrate::monte_carlo`]),
+//! * importance-sampled Monte Carlo on Hammersley points ([`crate::hemisphere::monte_carlo`]),
 //!   the method of the usual bakers, unbiased (÷ N) and in the biased variant (÷ valid
 //!   samples) that some implementations use.
 //!
@@ -15,10 +15,10 @@
 //! BENCHMARKS.md.
 
 use super::svg::Series;
-use crate::integrate::monte_carlo::{self as mc, Sampling};
-use crate::integrate::{integrate1, Tolerance};
+use crate::hemisphere::monte_carlo::{self as mc, Sampling};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Brdf, Fresnel, Masking, Ndf, NdfKind, Specular};
+use crate::quadrature::{integrate1, Tolerance};
 use crate::table::albedo::{average_albedo, directional_albedo};
 use crate::table::dfg::{sheen_albedo, split_sum};
 use std::f64::consts::FRAC_PI_2;

@@ -3,13 +3,13 @@
 //! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
 
 use super::{TableKind, TableSpec, TexelResult};
-use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
-use crate::integrate::hemisphere::{integrate_over_l, LobeWarp};
-use crate::integrate::sheen_azimuth::{self, View};
-use crate::integrate::tensor::integrate_over_l_smooth;
-use crate::integrate::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
-use crate::integrate::{integrate, Tolerance};
+use crate::hemisphere::tensor::integrate_over_l_smooth;
+use crate::hemisphere::{integrate_over_l, LobeWarp};
+use crate::kernels::sheen_azimuth::{self, View};
+use crate::kernels::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::model::{Brdf, Masking};
+use crate::quadrature::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
+use crate::quadrature::{integrate, Tolerance};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -36,11 +36,11 @@ pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
 ///
 /// GGX with Smith masking and Charlie with Ashikhmin's visibility (F = 1, no diffuse lobe,
 /// see [`uses_kernel`]) use their specialised kernels first (GGX: the 1D polar one,
-/// [`ggx_polar`](crate::integrate::ggx_polar); Charlie: [`charlie_kernels`]); other smooth
+/// [`ggx_polar`](crate::kernels::ggx_polar); Charlie: the θh cloth kernel, `charlie_kernels`); other smooth
 /// models, and texels where a kernel's estimate does not reach the tolerance, the fast tensor
 /// rule ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
 /// V-groove term's kinks go to its branch-split rule
-/// ([`vgroove`](crate::integrate::vgroove)), then the adaptive integrator.
+/// ([`vgroove`](crate::kernels::vgroove)), then the adaptive integrator.
 pub fn directional_albedo(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1], [f64; 1], u64) {
     directional_albedo_in(brdf, mu, tol, None)
 }
@@ -100,12 +100,8 @@ fn directional_albedo_in(
             (s.fresnel, super::dfg::kernel_smith(s))
         {
             if f0.abs() <= 1.0 {
-                match crate::integrate::ggx_polar::ggx_split_sum(
-                    mu,
-                    s.ndf.alpha(),
-                    smith,
-                    0.5 * tol,
-                ) {
+                match crate::kernels::ggx_polar::ggx_split_sum(mu, s.ndf.alpha(), smith, 0.5 * tol)
+                {
                     Ok(e) => {
                         return (
                             [f0 * e.value[0] + e.value[1]],
@@ -125,7 +121,7 @@ fn directional_albedo_in(
     }) {
         use crate::model::NdfKind;
         if let Some(smith) = super::dfg::kernel_smith(s) {
-            match crate::integrate::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
+            match crate::kernels::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
                 Ok(e) => return (e.value, e.error, e.evals + spent),
                 Err(n) => spent += n,
             }
@@ -159,7 +155,7 @@ pub(crate) fn charlie_kernels(
     view: &View,
     alpha: f64,
     tol: f64,
-) -> Result<crate::integrate::Estimate<1>, u64> {
+) -> Result<crate::quadrature::Estimate<1>, u64> {
     sheen_azimuth::charlie_sheen_azimuth_shared(
         view.mu(),
         alpha,

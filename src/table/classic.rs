@@ -26,7 +26,7 @@
 //!   components only through squares or products ωi,x ωo,x and ωi,y ωo,y, so
 //!   E(φ) = E(−φ) = E(π − φ): the average is taken over [0, π/2].
 //! * **Fast path**: `phong`, `modified-phong`, `blinn-phong` and `ward-gmd` (isotropic)
-//!   are first integrated by [`crate::integrate::classic_lobes`] (azimuth in closed form,
+//!   are first integrated by [`crate::kernels::classic_lobes`] (azimuth in closed form,
 //!   one 1D nested Clenshaw–Curtis integral per piece; [`fast_albedo`]); a texel whose
 //!   estimate does not reach the tolerance, and every other model, as follows.
 //! * **Quadrature**: the energy-law integrator of [`crate::laws`] (nested adaptive
@@ -549,7 +549,7 @@ fn azimuth_average(m: &dyn Reflectance, theta: f64, e0: Albedo, ey: Albedo, tol:
 }
 
 /// The view-side albedo of an isotropic model at parameter `p` by the 1D fast path of
-/// [`classic_lobes`] where one exists for the model (blinn-phong, modified-phong, phong,
+/// [`classic_lobes`](crate::kernels::classic_lobes) where one exists for the model (blinn-phong, modified-phong, phong,
 /// ward-gmd): `None` for other models, `Some(Err(evaluations spent))` where its estimate
 /// does not reach `tol`, `None` also at cos θv ≤ 0 (left to the laws integrator's own
 /// convention there; tables reject that cosine). The lobe weight scales the lobe (its tolerance is divided by it);
@@ -573,11 +573,11 @@ pub fn fast_albedo(c: &ClassicModel, mu: f64, p: f64, tol: f64) -> Option<Result
     }))
 }
 
-type Lobe = fn(f64, f64, f64) -> Result<crate::integrate::Estimate<1>, u64>;
+type Lobe = fn(f64, f64, f64) -> Result<crate::quadrature::Estimate<1>, u64>;
 
 /// The Lambert weight, lobe weight and 1D fast path of a model that has one.
 fn fast_lobe(c: &ClassicModel) -> Option<(f64, f64, Lobe)> {
-    use crate::integrate::classic_lobes as cl;
+    use crate::kernels::classic_lobes as cl;
     Some(match *c {
         ClassicModel::BlinnPhong { ks } => (0.0, ks, cl::blinn_phong_albedo),
         ClassicModel::ModifiedPhong { kd, ks } => (kd, ks, cl::modified_phong_albedo),
@@ -607,7 +607,7 @@ pub fn method(spec: &TableSpec) -> String {
     };
     format!(
         "{which}{}; {rest}: {METHOD}",
-        crate::integrate::classic_lobes::METHOD
+        crate::kernels::classic_lobes::METHOD
     )
 }
 

@@ -10,20 +10,20 @@
 //! **How a table is baked.** GGX tables with Smith masking go by lines of texels
 //! interpolated from fewer quadratures: rows, grids across the table whose samples are whole
 //! columns, and columns ([`dfg_lines`](super::dfg_lines), which holds the plan and its
-//! measurements). Other models go column by column ([`column_fn`]), texel by texel; this
+//! measurements). Other models go column by column (`column_fn`), texel by texel; this
 //! module holds the per-texel integrals both use.
 
 use super::albedo::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
-use crate::integrate::ggx_polar;
-use crate::integrate::ggx_polar::Smith;
-use crate::integrate::hemisphere::{integrate_over_l, Node};
-use crate::integrate::interp1d;
-use crate::integrate::sheen_azimuth::View;
-use crate::integrate::tensor::integrate_over_l_smooth;
-use crate::integrate::vgroove::{integrate_over_l_kinked, TailCut};
+use crate::hemisphere::tensor::integrate_over_l_smooth;
+use crate::hemisphere::{integrate_over_l, Node};
+use crate::kernels::ggx_polar;
+use crate::kernels::ggx_polar::Smith;
+use crate::kernels::sheen_azimuth::View;
+use crate::kernels::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, Specular};
+use crate::quadrature::interp1d;
 
 /// The split-sum pair at one (μ, α) with F = 1 inside `spec`: returns
 /// `([∫(1−Fc) f cos, ∫ Fc f cos], errors, evaluations)`.
@@ -91,7 +91,7 @@ pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
 }
 
 /// Whether a dfg table with this model uses the specialised kernels of
-/// [`dfg_kernel`] (first) for its split-sum channels.
+/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels.
 pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
     ndf == Some(NdfKind::Ggx)
         && matches!(

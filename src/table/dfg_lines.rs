@@ -7,18 +7,18 @@
 //! - **rows** (one roughness, every view μ, in x = √μ): each node one quadrature;
 //! - **grids**: lines across the table in x whose samples are whole *columns* — a column
 //!   (one μ, the rows of a band of roughnesses) itself interpolated along the roughness axis
-//!   ([`RoughnessLine`]). A grid's cost hardly grows with the table's size (a 512² table
+//!   (`RoughnessLine`). A grid's cost hardly grows with the table's size (a 512² table
 //!   needs about the columns and column nodes of a 128² one), while rows cost per row;
 //! - **strips**: columns alone, at the texel columns nearest grazing.
 //!
 //! Which line serves which texels was measured (filament-dfg, evaluations at 128² / 512²,
-//! 2026-11-30; [`plan`] has the rules; the alternatives were measured before interp1d's
+//! 2026-11-30; `plan` has the rules; the alternatives were measured before interp1d's
 //! truncation estimate was doubled, which adds ~10% to any of them):
 //! - *Split-sum pair.* Lobes from α = 1/64 up on a grid in (√μ, √α) (since in (√μ, ln α):
-//!   [`RoughnessVar::Ln`]; since round 9 from α = 1/32 up, since round 11 from 1/40, see
-//!   [`PAIR_BANDS`]): 3.8 M / 5.4 M (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64)
+//!   `RoughnessVar::Ln`; since round 9 from α = 1/32 up, since round 11 from 1/40, see
+//!   `PAIR_BANDS`): 3.8 M / 5.4 M (by rows ~6 M / ~60 M). At 512² the band [1/256, 1/64)
 //!   on a grid of its own (5.6 M; by rows 7.1 M): a band goes on a grid where it holds at
-//!   least [`GRID_MIN_ROWS`] rows, else by rows; α < 1/256 always by rows (their rows are
+//!   least `GRID_MIN_ROWS` rows, else by rows; α < 1/256 always by rows (their rows are
 //!   cheap and their columns are not): 2.3 M / 3.4 M. One grid over every roughness cost
 //!   19.8 M / 53.3 M: near grazing the split sum of a narrow lobe changes on the scale of α
 //!   itself.
@@ -32,14 +32,14 @@
 //!   grazing: one grid in ln α over every narrow row cost 20.6 M at 512².
 //!
 //! The cloth measurements above were made with the light-direction cloth kernels. Since
-//! the θh kernel ([`sheen_azimuth`](crate::integrate::sheen_azimuth)) took over, the cloth
+//! the θh kernel ([`sheen_azimuth`](crate::kernels::sheen_azimuth)) took over, the cloth
 //! channel costs 0.87 M / 1.31 M evaluations in all (~10 / ~13 ms of one core at 128² /
 //! 512²) and its plan was left as it was.
 //!
 //! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
 //! Lebesgue constant times the largest column estimate at its nodes); a column's is its
 //! y-interpolation's over its own nodes. Samples that serve as nodes are computed at 1/8 of
-//! the tolerance of the line they serve ([`NODE_TOL_FRACTION`]), so that the Lebesgue
+//! the tolerance of the line they serve (`NODE_TOL_FRACTION`), so that the Lebesgue
 //! constant (at most 3.66 at degree 64) times their estimates stays below half the
 //! tolerance; where it still does not, [`interp1d`] recomputes them tighter.
 //!
@@ -49,9 +49,9 @@
 
 use super::dfg::{as_sample, cloth_sample, cloth_texel, Ctx, Dense};
 use super::TableSpec;
-use crate::integrate::interp1d::{self, LineValues, Sample};
-use crate::integrate::sheen_azimuth::View;
+use crate::kernels::sheen_azimuth::View;
 use crate::lut::Axis;
+use crate::quadrature::interp1d::{self, LineValues, Sample};
 use rayon::prelude::*;
 
 /// Where the lines in x = √μ are cut first: μ = 1/64 (θv ≈ 89.1°). Closer to grazing the split
@@ -117,7 +117,7 @@ const COLUMN_NODE_TOL_FRACTION: f64 = 1.0 / 4.0;
 /// 164, 1/40 228 / 667 / 162, 1/44 239 / 682 / 159, 1/48 247 / 694 / 165.
 const PAIR_BANDS: [f64; 2] = [1.0 / 256.0, 1.0 / 40.0];
 
-/// The degree at which the interpolation of a column of [`PAIR_BANDS`]' band k starts
+/// The degree at which the interpolation of a column of `PAIR_BANDS`' band k starts
 /// ([`interp1d::line_batched`]). The upper band (measured from α = 1/32 up, since round 11 from
 /// 1/40) needs degree ~20–24 in ln α at most view cosines (its Chebyshev coefficients fall
 /// below the column tolerance, ~1e-8, near degree 20 for μ = 0.3 … 1): from 8 that costs
@@ -167,7 +167,7 @@ const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
 /// the pair goes by rows and the wide cloth lobes by columns alone.
 pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
-/// Whether [`bake`] bakes this table: 2D dfg tables whose split-sum channels go through the
+/// Whether `bake` bakes this table: 2D dfg tables whose split-sum channels go through the
 /// GGX kernels (analytic in √μ along a row, in ln α along a column), with view cosines
 /// increasing and positive. Lines too short to pay are computed texel by texel inside
 /// [`interp1d`].

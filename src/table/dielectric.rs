@@ -11,7 +11,7 @@
 //!
 //! **Kinks are panel boundaries, in both variables.** Inside a panel the integrand is
 //! smooth, so every panel is first integrated by nested Clenshaw–Curtis
-//! ([`crate::integrate::cc1d`], 9 to 129 nodes, geometric convergence) and only where its
+//! ([`crate::quadrature::cc1d`], 9 to 129 nodes, geometric convergence) and only where its
 //! estimate does not reach the panel's share of the tolerance by adaptive Gauss–Kronrod.
 //! The inner (u) boundaries at a given φ:
 //!
@@ -40,11 +40,11 @@
 //! equator, h = (cos φ, sin φ, 0): cos φ = c/sin θv.
 
 use super::{TableSpec, TexelResult};
-use crate::integrate::cc1d::cc_or_adaptive;
-use crate::integrate::hemisphere::{nested_tolerances, tan_theta_h_max};
-use crate::integrate::{Estimate, Tolerance};
+use crate::hemisphere::{nested_tolerances, tan_theta_h_max};
 use crate::model::btdf::{integrands_many, MicroNormal, RoughDielectric};
 use crate::model::{Fresnel, Ndf};
+use crate::quadrature::cc1d::cc_or_adaptive;
+use crate::quadrature::{Estimate, Tolerance};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Upper end of the warped inner variable where the range is not cut by v·h = 0.
@@ -428,7 +428,7 @@ const FIBRE_ETAS: usize = 4;
 
 /// How the slices of one fibre (fixed μ and roughness, every η) are grouped into shared
 /// rules ([`reflect_transmit_etas`]): the η ≥ 1 slices, whose breakpoints are all the same,
-/// in groups of up to [`FIBRE_ETAS`] consecutive slices; each η < 1 slice alone, since its
+/// in groups of up to `FIBRE_ETAS` consecutive slices; each η < 1 slice alone, since its
 /// breakpoints (critical angle, transmitted horizon) depend on η and the union of several
 /// slices' breakpoints costs more nodes than it shares (measured on the `dielectric-btdf`
 /// preset, `examples/fibre_check.rs union`: its four η < 1 slices as one rule 37,340 nodes

@@ -259,15 +259,15 @@ pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
 /// E(μ) of one BRDF for several Fresnel terms at once: the directional albedo of `brdf`
 /// (whose own Fresnel term is ignored) with each of `fresnels` in turn, to absolute tolerance
 /// `tol` each. E_p(μ) = ∫ D G F_p(v·h)/(4 n·v) dω_l differs between the terms only in the
-/// factor F_p(v·h), so up to [`FRESNEL_FIBRE_SLICES`] of them are the channels of one tensor
-/// rule ([`integrate_over_l_cc_counted`](crate::integrate::tensor::integrate_over_l_cc_counted)):
+/// factor F_p(v·h), so up to `FRESNEL_FIBRE_SLICES` of them are the channels of one tensor
+/// rule ([`integrate_over_l_cc_counted`](crate::hemisphere::tensor::integrate_over_l_cc_counted)):
 /// the nodes, D·G and the Jacobians are computed once and multiplied by each term's F. The
 /// rule refines until every channel's own estimate meets `tol`, and each term keeps its own
 /// channel's estimate; evaluations count nodes once (returned with the group's first term,
 /// 0 with the others). Where the shared rule does not converge, the group's terms go one by
 /// one through [`directional_albedo`], the abandoned attempt counted too; so do all terms of
 /// a BRDF outside the shared path's scope (a Charlie lobe, V-groove masking, a diffuse lobe:
-/// [`uses_fresnel_fibre`] keeps such tables texel by texel). Returns `[value], [error],
+/// `uses_fresnel_fibre` keeps such tables texel by texel). Returns `[value], [error],
 /// evaluations` per term.
 pub fn directional_albedo_fresnels(
     brdf: &Brdf,
@@ -275,7 +275,7 @@ pub fn directional_albedo_fresnels(
     mu: f64,
     tol: f64,
 ) -> Vec<([f64; 1], [f64; 1], u64)> {
-    use crate::integrate::tensor::{integrate_over_l_cc_counted, InnerWarp};
+    use crate::hemisphere::tensor::{integrate_over_l_cc_counted, InnerWarp};
     let s = brdf.specular.as_ref().expect("a specular lobe");
     let warp = InnerWarp::for_ndf(&s.ndf);
     // (a lobe outside this path's scope: every term by the per-term path, no attempt)
@@ -284,7 +284,7 @@ pub fn directional_albedo_fresnels(
         && brdf.diffuse_weight == 0.0;
     let mut out = Vec::with_capacity(fresnels.len());
     for fs in fresnels.chunks(FRESNEL_FIBRE_SLICES) {
-        let shared_rule = |n: &crate::integrate::hemisphere::Node| {
+        let shared_rule = |n: &crate::hemisphere::Node| {
             let cw = s.cosine_weighted_with(n, 1.0);
             let mut y = [0.0; FRESNEL_FIBRE_SLICES];
             for (k, f) in fs.iter().enumerate() {

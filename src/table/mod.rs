@@ -16,9 +16,9 @@ pub mod spec;
 
 pub use spec::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 
-use crate::integrate::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use crate::lut::{Channel, Lut};
 use crate::numfmt::num;
+use crate::quadrature::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use rayon::prelude::*;
 
 /// Why a bake failed.
@@ -221,7 +221,7 @@ pub fn bake_until(
 /// before every texel — every column of a dfg table, every fibre of a table with a fibre
 /// path —, so a bake overruns it by at most one texel, column or fibre per thread; every
 /// texel's integrals together are bounded by
-/// [`INTEGRAL_EVAL_BUDGET`] evaluations, see [`crate::integrate::budget`]).
+/// [`INTEGRAL_EVAL_BUDGET`] evaluations, see [`crate::quadrature::budget`]).
 pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError> {
     let deadline = opts.deadline;
     spec.validate().map_err(|msg| BakeError::Invalid {

@@ -10,7 +10,7 @@
 /// (1 − cos θh)⁵. Adaptive Gauss–Kronrod at 1e-15 on panels with edges at α·10^k, so that
 /// the lobe (width ~α in θh) is resolved. Returns values and error estimates.
 pub fn normal_view_split_sum(alpha: f64) -> ([f64; 2], [f64; 2]) {
-    use brdfbake::integrate::{integrate, Tolerance};
+    use brdfbake::quadrature::{integrate, Tolerance};
     use std::f64::consts::{FRAC_PI_4, PI};
     let a2 = alpha * alpha;
     let f = |th: f64| {

@@ -19,7 +19,10 @@
 //! **Grazing views.** As θv → 90°, ψ swings from +θv to −θv in a φ-interval of width
 //! ~cos θv around φ = π/2, so the φ range is split there and refined adaptively.
 
-use super::adaptive::{integrate, Estimate, Tolerance};
+pub mod monte_carlo;
+pub mod tensor;
+
+use crate::quadrature::adaptive::{integrate, Estimate, Tolerance};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Everything an integrand may need at one node, all cosines with respect to the normal.

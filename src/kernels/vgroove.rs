@@ -1,7 +1,7 @@
 //! The fast path for hemisphere integrals with Cook–Torrance's V-groove masking term
 //! `G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h))` (Cook & Torrance 1982, eq. 6, after
 //! Torrance & Sparrow 1967): the nested Clenshaw–Curtis tensor rule of
-//! [`tensor`](super::tensor) on pieces of the half-vector domain inside which G is one
+//! [`tensor`](crate::hemisphere::tensor) on pieces of the half-vector domain inside which G is one
 //! smooth branch, so that no rule ever sees a kink.
 //!
 //! **Which branch where.** Same coordinates as [`integrate_over_l`]: view
@@ -13,7 +13,7 @@
 //! * `gl = 2(n·h)(n·l)/(v·h) = 4 cos²θh − gv` (from `n·l = 2(v·h)(n·h) − n·v`),
 //!
 //! so `gl = gv` ⇔ `t = s` (θh = ψ), `gv = 1` ⇔ `θh = π/2 − ψ`, and `gl = 1` ⇔
-//! `θh = (ψ + π/2)/3` (see [`vgroove_kinks`](super::hemisphere::vgroove_kinks), which lists
+//! `θh = (ψ + π/2)/3` (see [`vgroove_kinks`](crate::hemisphere::vgroove_kinks), which lists
 //! all three candidates). Of these, only some are branch switches of the min (derived
 //! here): both ratios are 2 at θh = 0, gl decreases through 1 once in `[0, θmax]`, and
 //! gl < gv exactly for θh > ψ. Hence
@@ -28,7 +28,7 @@
 //! integral is not smooth in φ: the φ range is split there, at `cos φ = 1/tan θv` (views
 //! beyond 45°). Each (φ panel, θh piece) is then a smooth 2D integral whose θh ends are
 //! smooth functions of φ, integrated by the nested tensor rule and driver of
-//! [`tensor::refine`](super::tensor) (its error estimate from the nested lower-order
+//! [`tensor::refine`](crate::hemisphere::tensor) (its error estimate from the nested lower-order
 //! rules, each piece to its share of the tolerance, the estimates summed).
 //!
 //! **Warps.** φ = π/2 + c·sinh s with `c = min(cot θv, 1)` as in the smooth fast path (the
@@ -45,10 +45,11 @@
 // Channel loops index several same-length arrays at once; iterator chains would hide that.
 #![allow(clippy::needless_range_loop)]
 
-use super::adaptive::Estimate;
-use super::hemisphere::{integrate_over_l, tan_theta_h_max, LobeWarp, Node};
-use super::tensor::{inner_sums, refine, rules, PhiWarp, Scratch, MAX_LEVEL};
+use crate::hemisphere::tensor::{PhiWarp, Scratch};
+use crate::hemisphere::{integrate_over_l, tan_theta_h_max, LobeWarp, Node};
 use crate::numerics::exp_poly;
+use crate::quadrature::adaptive::Estimate;
+use crate::quadrature::clenshaw_curtis::{inner_sums, refine, rules, MAX_LEVEL};
 use std::cell::RefCell;
 use std::f64::consts::FRAC_PI_2;
 

@@ -8,7 +8,7 @@
 //! visits panels in a fixed order and sums left to right, so the result does not depend on
 //! threads, timing or anything but the inputs.
 
-use super::gauss::{k15_nodes, WG, WGK};
+use crate::quadrature::gauss::{k15_nodes, WG, WGK};
 
 /// A quadrature result: value per channel, estimated absolute error per channel, and the
 /// number of integrand evaluations spent.
@@ -60,7 +60,7 @@ pub struct Tolerance {
     /// error estimates still count), so a pathological integrand costs bounded time and
     /// reports a large error instead of hanging. The traversal order is fixed, so where the
     /// budget runs out is deterministic too. Nested integrals also share the thread's
-    /// [`budget`](super::budget) scope, which stops every rule the same way.
+    /// [`budget`](crate::quadrature::budget) scope, which stops every rule the same way.
     pub max_evals: u64,
 }
 
@@ -119,14 +119,14 @@ fn recurse<const N: usize, F: FnMut(f64) -> [f64; N]>(
 ) {
     let (floor, budget) = (lim.floor, lim.budget);
     let e = panel(f, a, b);
-    super::budget::charge(e.evals);
+    crate::quadrature::budget::charge(e.evals);
     let err = e.max_error();
     if depth == 0
         || err <= tol
         || err <= floor * (b - a)
         || !err.is_finite()
         || out.evals >= budget
-        || super::budget::exhausted()
+        || crate::quadrature::budget::exhausted()
     {
         out.add(&e);
         return;

@@ -2,7 +2,7 @@
 //! the half vector, refined one dimension at a time, with an error estimate from the nested
 //! lower-order rules (no extra evaluations).
 //!
-//! **Coordinates.** The same as [`integrate_over_l`](super::hemisphere::integrate_over_l):
+//! **Coordinates.** The same as [`integrate_over_l`](crate::hemisphere::integrate_over_l):
 //! the half vector `h = (θh, φ)`, `dω_l = 4 (v·h) dω_h`, θh up to the exact horizon
 //! `θmax(φ) = π/4 + ψ/2` (`tan ψ = tan θv cos φ`), the lobe warp `u = asinh(tan θh / α)` for
 //! lobes peaked at the normal. Two further warps make every integrand an O(1)-wide smooth
@@ -27,7 +27,7 @@
 //! over-estimate, as |K15 − G7| is for the adaptive integrator. The dimension whose
 //! difference is larger is refined until the estimate is below the tolerance; if that
 //! needs more than [`MAX_LEVEL`] in a dimension, the caller is told to use the adaptive
-//! integrator instead (`None`). The starting levels are [`MIN_LEVEL`] (9 × 9 nodes) so
+//! integrator instead (`None`). The starting levels are [`MIN_LEVEL`](crate::quadrature::clenshaw_curtis::MIN_LEVEL) (9 × 9 nodes) so
 //! that an O(1)-wide feature cannot fall between all nodes of both compared rules.
 //!
 //! Determinism: the sums run in a fixed order over fixed nodes; scratch memory is per
@@ -36,81 +36,15 @@
 // Channel loops index several same-length arrays at once; iterator chains would hide that.
 #![allow(clippy::needless_range_loop)]
 
-use super::adaptive::Estimate;
-use super::hemisphere::{tan_theta_h_max, LobeWarp, Node};
+use crate::hemisphere::{tan_theta_h_max, LobeWarp, Node};
 use crate::model::{Ndf, NdfKind};
+use crate::quadrature::adaptive::Estimate;
+use crate::quadrature::clenshaw_curtis::{inner_sums, refine, rules, MAX_LEVEL, NMAX};
 use std::cell::RefCell;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
-use std::sync::OnceLock;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// What the fast path does, as the sidecar's `quadrature.method` states it.
 pub const METHOD: &str = "nested Clenshaw-Curtis tensor rule over the half vector (2^k+1 nodes per dimension, k = 3..7, at most 65x65 nodes), refined one dimension at a time: phi in [0, pi] (doubled by symmetry) as phi = pi/2 + c sinh(s), c = min(cot theta_v, 1); theta_h up to the exact horizon pi/4 + psi/2 (tan psi = tan theta_v cos phi) in the lobe warp u = asinh(tan theta_h / alpha) (sheen: cos theta_h = sqrt(alpha) sinh(y) for alpha < 1/16, theta_h = theta_max w^2 otherwise); error estimate per channel and dimension max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol)) from the nested lower-order rules, summed over the two dimensions; a texel whose estimate does not reach the tolerance within 65x65 nodes, or whose very narrow sheen lobe (alpha < 1e-4) has D > 1e-12 D_max at the horizon, is integrated by nested adaptive Gauss-Kronrod (G7/K15) instead (phi split at pi/2, same horizon and warp, estimate |K15 - G7| summed over panels); f64 accumulation";
-
-/// Finest level per dimension: 2^7 + 1 = 129 nodes.
-pub const MAX_LEVEL: usize = 7;
-/// Largest tensor grid tried before giving up (65 × 65 nodes): beyond, the adaptive
-/// integrator is cheaper than doubling a whole dimension again.
-pub const MAX_NODES: usize = 65 * 65;
-/// Starting level per dimension: 2^3 + 1 = 9 nodes (compared against 5).
-pub const MIN_LEVEL: usize = 3;
-const NMAX: usize = (1 << MAX_LEVEL) + 1;
-
-/// Clenshaw–Curtis weights on [−1, 1] for every level 0..=MAX_LEVEL, stored for the
-/// nodes of the finest level (index i ↔ x = cos(iπ/2^MAX_LEVEL)); a level-k rule uses the
-/// indices that are multiples of 2^(MAX_LEVEL − k).
-pub(crate) struct Rules {
-    pub(crate) x: [f64; NMAX],
-    /// w[k][j] = weight of level k's j-th node (j = 0..=2^k).
-    pub(crate) w: Vec<Vec<f64>>,
-}
-
-/// The Clenshaw–Curtis nodes and weights of every level (shared with
-/// [`dfg_kernel`](super::dfg_kernel)).
-pub(crate) fn rules() -> &'static Rules {
-    static R: OnceLock<Rules> = OnceLock::new();
-    R.get_or_init(|| {
-        let mut x = [0.0; NMAX];
-        let nm = (NMAX - 1) as f64;
-        for (i, xi) in x.iter_mut().enumerate() {
-            // symmetric by construction: x[n − i] = −x[i] exactly, x[n/2] = 0
-            let j = i.min(NMAX - 1 - i) as f64;
-            let v = (PI * j / nm).cos();
-            *xi = if 2 * i < NMAX - 1 {
-                v
-            } else if 2 * i == NMAX - 1 {
-                0.0
-            } else {
-                -v
-            };
-        }
-        let w = (0..=MAX_LEVEL).map(cc_weights).collect();
-        Rules { x, w }
-    })
-}
-
-/// Clenshaw–Curtis weights for n = 2^k intervals (n + 1 nodes x_j = cos(jπ/n)):
-/// `w_j = (c_j/n)(1 − Σ_{m=1}^{n/2} b_m cos(2mjπ/n)/(4m² − 1))`, `c_0 = c_n = 1`, else 2,
-/// `b_{n/2} = 1`, else 2 (Waldvogel 2006, eq. 2.4; Trefethen 2008, §2). Level 0 is the
-/// trapezoid rule.
-fn cc_weights(k: usize) -> Vec<f64> {
-    let n = 1usize << k;
-    if n == 1 {
-        return vec![1.0, 1.0];
-    }
-    let nf = n as f64;
-    (0..=n)
-        .map(|j| {
-            let c = if j == 0 || j == n { 1.0 } else { 2.0 };
-            let mut s = 0.0;
-            for m in 1..=n / 2 {
-                let b = if m == n / 2 { 1.0 } else { 2.0 };
-                let mf = m as f64;
-                s += b * (2.0 * PI * mf * j as f64 / nf).cos() / (4.0 * mf * mf - 1.0);
-            }
-            c / nf * (1.0 - s)
-        })
-        .collect()
-}
 
 /// The inner (θh) variable of the fast path.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -208,7 +142,7 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// Fast-path version of [`integrate_over_l`](super::hemisphere::integrate_over_l): returns
+/// Fast-path version of [`integrate_over_l`](crate::hemisphere::integrate_over_l): returns
 /// `None` if the nested rules do not reach `tol_abs` (estimated) within [`MAX_LEVEL`].
 /// `g` is as there: `f(v, l)·(n·l)` per channel at a half-vector node.
 pub fn integrate_over_l_cc<const N: usize, F: Fn(&Node) -> [f64; N]>(
@@ -379,122 +313,9 @@ fn run<const N: usize, F: Fn(&Node) -> [f64; N]>(
     refine(sc, tol, fill, inner)
 }
 
-/// The inner sums of one φ node at u levels ku, ku − 1, ku − 2, times `scale` (the node's
-/// inner half-length × outer Jacobian); `vals` is the node's NMAX × N channel-interleaved
-/// values, filled at least to level `ku`.
-pub(crate) fn inner_sums<const N: usize>(vals: &[f64], scale: f64, ku: usize) -> [[f64; N]; 3] {
-    let r = rules();
-    let mut out = [[0.0; N]; 3];
-    for (m, o) in out.iter_mut().enumerate() {
-        let k = ku - m;
-        let us = 1usize << (MAX_LEVEL - k);
-        for (jj, &wj) in r.w[k].iter().enumerate() {
-            let at = jj * us * N;
-            for c in 0..N {
-                o[c] += wj * vals[at + c];
-            }
-        }
-        for v in o.iter_mut() {
-            *v *= scale;
-        }
-    }
-    out
-}
-
-/// The nested level driver of the fast paths (this file's generic one and the specialised
-/// kernels of [`dfg_kernel`](super::dfg_kernel)): starting from level [`MIN_LEVEL`] in both
-/// dimensions, `fill(sc, evals, i, ku)` brings φ node `i`'s inner values to u level `ku`
-/// (counting new evaluations) and `inner(sc, i, ku)` returns its inner sums at u levels
-/// ku, ku − 1, ku − 2 (times the node's scale); the dimension with the larger estimated
-/// error is refined until the estimate meets `tol`, or `Err(evaluations)` once
-/// [`MAX_LEVEL`] / [`MAX_NODES`] is reached or the estimate is not finite.
-pub(crate) fn refine<const N: usize, S>(
-    sc: &mut S,
-    tol: f64,
-    mut fill: impl FnMut(&mut S, &mut u64, usize, usize),
-    mut inner: impl FnMut(&mut S, usize, usize) -> [[f64; N]; 3],
-) -> Result<Estimate<N>, u64> {
-    let r = rules();
-    let mut evals = 0u64;
-    // Q(kp − a, ku − b) for (a, b) in (0,0), (1,0), (2,0), (0,1), (0,2): the φ rule of level
-    // kp − a uses the φ indices that are multiples of 2^(MAX_LEVEL − kp + a).
-    let mut quads = |sc: &mut S, kp: usize, ku: usize| -> [[f64; N]; 5] {
-        let mut q = [[0.0; N]; 5];
-        let ps = 1usize << (MAX_LEVEL - kp);
-        for (ii, &wi) in r.w[kp].iter().enumerate() {
-            let i = ii * ps;
-            let s3 = inner(sc, i, ku);
-            for c in 0..N {
-                q[0][c] += wi * s3[0][c];
-                q[3][c] += wi * s3[1][c];
-                q[4][c] += wi * s3[2][c];
-            }
-            for a in 1..=2 {
-                if ii % (1 << a) == 0 {
-                    let w = r.w[kp - a][ii >> a];
-                    for c in 0..N {
-                        q[a][c] += w * s3[0][c];
-                    }
-                }
-            }
-        }
-        q
-    };
-
-    let (mut kp, mut ku) = (MIN_LEVEL, MIN_LEVEL);
-    let grid = |kp: usize| (0..NMAX).step_by(1usize << (MAX_LEVEL - kp));
-    for i in grid(kp) {
-        fill(sc, &mut evals, i, ku);
-    }
-    loop {
-        let [q, qp1, qp2, qu1, qu2] = quads(&mut *sc, kp, ku);
-        // Per dimension, the error of the kept level is estimated by the last difference
-        // |Q_k − Q_{k−1}| (the error of the coarser rule), but never below what the
-        // difference before predicts if convergence were only quadratic in that relative
-        // error, |Q_{k−1} − Q_{k−2}|²/scale: two rules can agree by coincidence before the
-        // asymptotic regime (QUADPACK's estimate guards the same way, Piessens et al. 1983,
-        // §2.2.1). The scale is the channel's magnitude, at least the tolerance.
-        let mut err = [0.0; N];
-        let (mut ep, mut eu) = (0.0f64, 0.0f64);
-        for c in 0..N {
-            let a = nested_error(q[c], qp1[c], qp2[c], tol);
-            let b = nested_error(q[c], qu1[c], qu2[c], tol);
-            ep = ep.max(a);
-            eu = eu.max(b);
-            err[c] = a + b;
-        }
-        if !(ep.is_finite() && eu.is_finite()) {
-            return Err(evals);
-        }
-        // (a NaN value can hide behind a finite estimate: `max` ignores NaN)
-        if err.iter().all(|&e| e <= tol) && q.iter().all(|v| v.is_finite()) {
-            return Ok(Estimate {
-                value: q,
-                error: err,
-                evals,
-            });
-        }
-        let (can_p, can_u) = (kp < MAX_LEVEL, ku < MAX_LEVEL);
-        if !(can_p || can_u) {
-            return Err(evals);
-        }
-        if if ep >= eu { can_p } else { !can_u } {
-            kp += 1;
-        } else {
-            ku += 1;
-        }
-        if ((1usize << kp) + 1) * ((1usize << ku) + 1) > MAX_NODES {
-            return Err(evals);
-        }
-        for i in grid(kp) {
-            fill(sc, &mut evals, i, ku);
-        }
-    }
-}
-
 /// The hemisphere integral of a smooth integrand: the fast path, or — where its nested
-/// estimate does not reach `tol_abs` within [`MAX_NODES`] — the adaptive integrator
-/// ([`integrate_over_l`](super::hemisphere::integrate_over_l)) from scratch; the
+/// estimate does not reach `tol_abs` within [`MAX_NODES`](crate::quadrature::clenshaw_curtis::MAX_NODES) — the adaptive integrator
+/// ([`integrate_over_l`](crate::hemisphere::integrate_over_l)) from scratch; the
 /// evaluations of the abandoned attempt are counted too. For integrands with kinks (the
 /// V-groove term) call the adaptive integrator directly.
 pub fn integrate_over_l_smooth<const N: usize, F: Fn(&Node) -> [f64; N]>(
@@ -518,53 +339,23 @@ pub fn integrate_over_l_smooth<const N: usize, F: Fn(&Node) -> [f64; N]>(
         let cmin = (FRAC_PI_4 - 0.5 * theta_v).sin();
         let d_rel = ((1.0 - cmin * cmin).ln() / (2.0 * alpha)).exp();
         if alpha < 1e-4 && d_rel > 1e-12 {
-            return super::hemisphere::integrate_over_l(n_dot_v, lobe, tol_abs, g);
+            return crate::hemisphere::integrate_over_l(n_dot_v, lobe, tol_abs, g);
         }
     }
     match SCRATCH.with(|s| run(&mut s.borrow_mut(), n_dot_v, inner, tol_abs, &g)) {
         Ok(e) => e,
         Err(spent) => {
-            let mut e = super::hemisphere::integrate_over_l(n_dot_v, lobe, tol_abs, g);
+            let mut e = crate::hemisphere::integrate_over_l(n_dot_v, lobe, tol_abs, g);
             e.evals += spent;
             e
         }
     }
 }
 
-/// The error estimate of nested rules' level k from its results `q` (level k), `q1` (k − 1)
-/// and `q2` (k − 2): `max(|q − q1|, |q1 − q2|²/max(|q|, tol))` — the last difference, but
-/// never below what the difference before predicts under quadratic convergence (see
-/// the comment in `run`; QUADPACK, Piessens et al. 1983, §2.2.1). Shared by the nested
-/// Clenshaw–Curtis rules of this module, [`sheen_l`](super::sheen_l) and
-/// [`sheen_wide`](super::sheen_wide).
-pub(crate) fn nested_error(q: f64, q1: f64, q2: f64, tol: f64) -> f64 {
-    let d = |x: f64, y: f64| (x - y).abs();
-    d(q, q1).max(d(q1, q2).powi(2) / q.abs().max(tol))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Clenshaw–Curtis on n + 1 points integrates polynomials of degree ≤ n exactly; the
-    /// only error is rounding of ≤ 129 terms of size ≤ 1: bounded by 1e-14.
-    #[test]
-    fn clenshaw_curtis_is_exact_on_polynomials() {
-        let r = rules();
-        for k in 1..=MAX_LEVEL {
-            let n = 1usize << k;
-            let stride = 1usize << (MAX_LEVEL - k);
-            for deg in 0..=n as i32 {
-                let q: f64 = (0..=n).map(|j| r.w[k][j] * r.x[j * stride].powi(deg)).sum();
-                let exact = if deg % 2 == 0 {
-                    2.0 / (deg as f64 + 1.0)
-                } else {
-                    0.0
-                };
-                assert!((q - exact).abs() < 1e-14, "level {k} degree {deg}: {q}");
-            }
-        }
-    }
+    use std::f64::consts::PI;
 
     /// ∫ n·l dω_l = π for every view: checks the φ map, the horizon limit and the
     /// Jacobians of the tan and square-root warps (asked for 1e-11; the nested estimate must hold and

@@ -13,7 +13,7 @@
 //! Chebyshev polynomials (Trefethen, *Approximation Theory and Approximation Practice*, SIAM
 //! 2013, ch. 3). The coefficients of an analytic function decay geometrically, so the last
 //! two, `|c_{n−1}| + |c_n|`, estimate what truncation leaves out (ATAP ch. 8; the test of
-//! [`chebyshev`](super::chebyshev)), and interpolation aliases the omitted coefficients onto
+//! [`chebyshev`](crate::quadrature::chebyshev)), and interpolation aliases the omitted coefficients onto
 //! the kept ones, which at most doubles the error (ATAP Theorem 4.2: `‖f − p_n‖ ≤
 //! 2 Σ_{k>n} |a_k|`): the truncation estimate is `tail = 2(|c_{n−1}| + |c_n|)`. (Without the
 //! factor two, a row of GGX's split sum at α = 0.0067 came out 4.3e-8 off at μ = 0.035
@@ -38,10 +38,10 @@
 //! a pure function of its coordinates; lines are independent, so a caller may run them in
 //! parallel without changing a bit.
 
-use super::chebyshev::{chebyshev_polynomials, clenshaw, Lobatto};
+use crate::quadrature::chebyshev::{chebyshev_polynomials, clenshaw, Lobatto};
 
 /// What this module does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "adaptive Chebyshev interpolation along a line of texels (src/integrate/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested; the lines whose functions need ~24 start there: 24, 48), intervals halved where the last degree does not pass; accepted where 2(|c_(n-1)| + |c_n|) + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4 (recomputed 8x and 64x tighter where their errors use up half the tolerance); intervals with no more texels than nodes computed texel by texel.";
+pub const METHOD: &str = "adaptive Chebyshev interpolation along a line of texels (src/quadrature/interp1d.rs): Chebyshev-Lobatto nodes of degree 8, 16, 32, 64 (nested; the lines whose functions need ~24 start there: 24, 48), intervals halved where the last degree does not pass; accepted where 2(|c_(n-1)| + |c_n|) + Lebesgue(n) * (largest node error) <= tolerance and 3 extra samples between the nodes agree; that sum is each texel's estimate; nodes at tolerance/4 (recomputed 8x and 64x tighter where their errors use up half the tolerance); intervals with no more texels than nodes computed texel by texel.";
 
 /// Lowest and highest interpolation degree on one interval.
 pub const MIN_DEG: usize = 8;
@@ -146,7 +146,7 @@ where
     )
 }
 
-/// [`line`] with the nodes computed at `node_tol` instead of `tol/4`, and each interval's
+/// [`line()`] with the nodes computed at `node_tol` instead of `tol/4`, and each interval's
 /// degrees starting at `first` (see [`line_batched`]; [`MIN_DEG`] in `line`): for a function
 /// whose node estimates come close to what they were asked for, `Λ_n·δ` at tol/4 can exceed
 /// the `tol/2` beyond which an interval is computed directly (Λ_8 = 2.4, Λ_64 = 3.66); at

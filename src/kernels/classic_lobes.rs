@@ -12,7 +12,7 @@
 //! Dür's normalization). In half-vector coordinates (`dω_l = 4(v·h)dω_h`, Walter et al.
 //! 2007 eq. 14) with `h = (θh, φ)`, `a = s_v sin θh`, `b = μ cos θh`: `v·h = a cos φ + b` and
 //! `n·l = 2(v·h)cos θh − μ`. `n·l > 0` iff `cos φ > c₀(θh) = −μ cos 2θh / (s_v sin 2θh)`
-//! (the horizon of [`crate::integrate::hemisphere`] seen per θh), so the φ range is the
+//! (the horizon of [`crate::hemisphere`] seen per θh), so the φ range is the
 //! whole circle for `θh ≤ θa = π/4 − θv/2`, `[−φ₁, φ₁]` with `φ₁ = arccos c₀` for
 //! `θa < θh < θb = π/4 + θv/2`, and empty beyond. The φ integrands are a quadratic in
 //! `cos φ` (Blinn-Phong: `(n·l)(v·h)`) or `(n·l)/(v·h) = 2cos θh − μ/(b + a cos φ)` (Ward:
@@ -49,9 +49,9 @@
 //! `max(|Q_k − Q_k−1|, |Q_k−1 − Q_k−2|²/max(|Q_k|, tol))`) with its share of the tolerance;
 //! the estimates are summed. Deterministic: fixed nodes, fixed summation order.
 
-use super::adaptive::Estimate;
-use super::cc1d::nested_cc_from;
-use super::tensor::MAX_LEVEL;
+use crate::quadrature::adaptive::Estimate;
+use crate::quadrature::cc1d::nested_cc_from;
+use crate::quadrature::clenshaw_curtis::MAX_LEVEL;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 /// What the fast path does, as the sidecar's `quadrature.method` states it.

@@ -28,7 +28,7 @@
 //! `(θ0 − θh)^{3/2}`: on `[θ1, θ0]` two panels with `θh = θ1 + w²` and `θh = θ0 − w²` (split
 //! at the midpoint) make the integrand smooth in w; on `[0, θ1]`, where K is analytic,
 //! `θh = θ1 w²` for the factor `sin^{1/α}θh`, not analytic at 0 unless 1/α is an even integer.
-//! Each panel is integrated by nested Clenshaw–Curtis ([`cc1d`](super::cc1d): 9 … 129 nodes,
+//! Each panel is integrated by nested Clenshaw–Curtis ([`cc1d`](crate::quadrature::cc1d): 9 … 129 nodes,
 //! its estimate) to a third of the tolerance. Narrow lobes (α < [`CUT_BELOW_ALPHA`])
 //! concentrate in a layer below θ0 (or at θh = π/2 for grazing views): everything below
 //! `θ_lo`, where `norm·sin^{1/α+1}θh·2π` times the interval is below `tol/1000` (`K ≤ 2π`:
@@ -50,9 +50,9 @@
 //! Determinism: fixed nodes and summation order; what a column shares is a pure function of
 //! the view and the panel, so a texel gets the same bits alone or in its column.
 
-use super::adaptive::Estimate;
-use super::cc1d::{nested_cc_indexed, FIRST_LEVEL};
-use super::tensor::MAX_LEVEL;
+use crate::quadrature::adaptive::Estimate;
+use crate::quadrature::cc1d::{nested_cc_indexed, FIRST_LEVEL};
+use crate::quadrature::clenshaw_curtis::MAX_LEVEL;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// What a table column (one view μ, every roughness) shares: the view cosine and the θh
@@ -89,7 +89,7 @@ impl View {
 const MIN_C: f64 = 1e-3;
 
 /// What this path does, for documentation and the benchmarks.
-pub const METHOD: &str = "cloth as a 1D integral over theta_h (src/integrate/sheen_azimuth.rs): the azimuthal integral of V mu_l (v.h) in closed form (partial fractions), nested Clenshaw-Curtis on three panels with square-root warps at the arc's end points, cut below where the lobe is under tol/1000";
+pub const METHOD: &str = "cloth as a 1D integral over theta_h (src/kernels/sheen_azimuth.rs): the azimuthal integral of V mu_l (v.h) in closed form (partial fractions), nested Clenshaw-Curtis on three panels with square-root warps at the arc's end points, cut below where the lobe is under tol/1000";
 
 /// The view's constants for K(θh) (not [`View`], the column-shared view data of the table
 /// code).
@@ -425,7 +425,7 @@ mod tests {
     /// leaves ~1e-10 of K's scale (≤ 2π).
     #[test]
     fn azimuthal_integral_matches_quadrature() {
-        let (gx, gw) = crate::integrate::gauss::gauss_legendre(40);
+        let (gx, gw) = crate::quadrature::gauss::gauss_legendre(40);
         for &mu_v in &[0.001, 0.004, 0.03, 0.2, 0.5, 0.77, 0.95, 0.999] {
             let view = Azimuth {
                 mu_v,

@@ -22,7 +22,7 @@
 //! as Filament's `cmgen` does for its cloth channel), l is drawn uniformly over the
 //! hemisphere: cos θl = ξ₂, φ = 2πξ₁, `p(l) = 1/(2π)`.
 
-use super::hemisphere::Node;
+use crate::hemisphere::Node;
 use crate::model::{Ndf, NdfKind};
 use std::f64::consts::PI;
 
@@ -126,7 +126,7 @@ pub fn sample(sampling: Sampling, mu: f64, xi1: f64, xi2: f64) -> Option<(Node, 
     }
 }
 
-/// Estimates `∫ g dω_l` (g as for [`super::hemisphere::integrate_over_l`]) for a view with
+/// Estimates `∫ g dω_l` (g as for [`crate::hemisphere::integrate_over_l`]) for a view with
 /// n·v = `mu` from the `n`-point Hammersley set.
 pub fn estimate_over_l<const N: usize, F: Fn(&Node) -> [f64; N]>(
     mu: f64,

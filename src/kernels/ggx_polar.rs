@@ -83,7 +83,7 @@
 //! from the previous level's top four, `(Ĉ_{n/2}/Ĉ_n)^{2/n}`, but at most 2 — so the model's
 //! tail is never lighter than `Σ_{m>n}|a_m| ≤ Ĉ`, the assumption of the interpolation bound
 //! `(b − a)·2Ĉ`; that bound caps the estimate, and is the estimate where the coefficients do
-//! not decay (ρ ≤ 1). The model's error is multiplied by [`TAIL_SAFETY`] = 10: the decay
+//! not decay (ρ ≤ 1). The model's error is multiplied by `TAIL_SAFETY` = 10: the decay
 //! need not stay geometric beyond n (near normal views it slows), and on a dense sample the
 //! bare model came within 1.1× of the true error. (Until 2026-11-30 the estimate was the
 //! interpolation bound itself, at n = 32 500–1,800 times this one for ρ = 1.5–2: most
@@ -100,9 +100,9 @@
 // Channel loops index several same-length arrays at once.
 #![allow(clippy::needless_range_loop)]
 
-use super::adaptive::{integrate, Estimate, Tolerance};
-use super::tensor::{rules, MAX_LEVEL};
 use crate::numerics::sin_cos_taylor;
+use crate::quadrature::adaptive::{integrate, Estimate, Tolerance};
+use crate::quadrature::clenshaw_curtis::{rules, MAX_LEVEL};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
@@ -114,7 +114,7 @@ pub enum Smith {
 }
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
-pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/integrate/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail integrated with the rule's aliasing, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
+pub const METHOD: &str = "GGX split sum as a 1D integral over the light's polar angle (src/kernels/ggx_polar.rs): the azimuthal integral of D in closed form, that of D*Fc by the trapezoid rule after subtracting the lobe's double pole (adaptive Gauss-Kronrod in the pole-flattening variable where that does not converge), the polar integral by nested Clenshaw-Curtis (9 to 65 nodes, error from the Chebyshev coefficient tail integrated with the rule's aliasing, bisected where needed) on sinh-warped panels from theta_v; a texel whose estimate does not reach the tolerance goes to the 2D kernels";
 
 /// The Möbius map of the azimuthal rule is used where the nearest singularity has
 /// `tanh(b₀/2)` below this (b₀ ≲ 0.4: lines near grazing); elsewhere its gain did not pay

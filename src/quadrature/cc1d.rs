@@ -1,9 +1,9 @@
 //! One-dimensional nested Clenshaw–Curtis quadrature with the error estimate of the tensor
-//! fast path ([`tensor`](super::tensor)), and its use as the first try of a panel with the
+//! fast path ([`tensor`](crate::hemisphere::tensor)), and its use as the first try of a panel with the
 //! adaptive Gauss–Kronrod integrator as the fallback.
 //!
 //! **Rule.** Clenshaw–Curtis on `2^k + 1` Chebyshev extrema (the nodes and weights of
-//! [`tensor::rules`](super::tensor), Waldvogel 2006): level k's nodes contain level k − 1's,
+//! [`tensor::rules`](crate::hemisphere::tensor), Waldvogel 2006): level k's nodes contain level k − 1's,
 //! so each level adds `2^(k−1)` evaluations and brings the two coarser results for free.
 //! On an integrand analytic in a neighbourhood of the interval the error falls geometrically
 //! with the number of nodes, as Gauss–Legendre's does (Trefethen, *Is Gauss quadrature
@@ -23,8 +23,8 @@
 // Channel loops index several same-length arrays at once; iterator chains would hide that.
 #![allow(clippy::needless_range_loop)]
 
-use super::adaptive::{integrate, Estimate, Tolerance};
-use super::tensor::{rules, MAX_LEVEL};
+use crate::quadrature::adaptive::{integrate, Estimate, Tolerance};
+use crate::quadrature::clenshaw_curtis::{rules, MAX_LEVEL};
 
 /// First level tried: 2^3 + 1 = 9 nodes, compared against 5 and 3.
 pub const FIRST_LEVEL: usize = 3;

@@ -92,7 +92,7 @@ mod tests {
     /// A hopeless integrand stops at the budget, with an error estimate that says so.
     #[test]
     fn adaptive_rule_stops_at_the_budget() {
-        use crate::integrate::{integrate, Tolerance};
+        use crate::quadrature::{integrate, Tolerance};
         let tol = Tolerance {
             abs: 1e-300,
             max_depth: 60,

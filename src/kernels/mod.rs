@@ -1,0 +1,9 @@
+//! Kernels: one file per reduced integral. Each turns a model's integral into integrands the
+//! rules of [`crate::quadrature`] consume, by a closed-form reduction it cites, and reports
+//! `Err(evaluations spent)` where it does not reach its tolerance, so that the table kind that
+//! tried it falls back (the order is in each kind's file under [`crate::table`]).
+
+pub mod classic_lobes;
+pub mod ggx_polar;
+pub mod sheen_azimuth;
+pub mod vgroove;
