@@ -18,16 +18,6 @@ pub enum InputError {
     Io(String),
 }
 
-impl InputError {
-    /// The CLI exit code of this error.
-    pub fn exit_code(&self) -> i32 {
-        match self {
-            InputError::Input(_) => crate::cli::EXIT_INPUT,
-            InputError::Io(_) => crate::cli::EXIT_FAILURE,
-        }
-    }
-}
-
 /// Reads the regular file `path` of at most `max_bytes`. `what` names what was expected, for
 /// messages (`"a preset .json file"`).
 pub fn read_regular(path: &Path, max_bytes: u64, what: &str) -> Result<Vec<u8>, InputError> {

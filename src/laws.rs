@@ -336,7 +336,7 @@ pub fn energy(m: &dyn Reflectance, tol: f64) -> Energy {
 pub fn energy_until(
     m: &dyn Reflectance,
     tol: f64,
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Option<Energy> {
     use rayon::prelude::*;
     let stopped = std::sync::atomic::AtomicBool::new(false);

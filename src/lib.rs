@@ -30,6 +30,7 @@
 //! ```
 
 pub mod cli;
+pub mod deadline;
 pub mod digest;
 pub mod encode;
 pub mod hemisphere;

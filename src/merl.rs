@@ -56,18 +56,9 @@ pub const SCALE: [f64; 3] = [1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0];
 pub enum MerlError {
     /// The file is not a MERL file (exit code 2).
     Format(String),
-    /// Reading failed (exit code 1), or the file does not exist (exit code 2).
+    /// Reading failed (exit code 1), or the file does not exist (kind `NotFound`, exit code
+    /// 2).
     Io(String, std::io::ErrorKind),
-}
-
-impl MerlError {
-    pub fn exit_code(&self) -> i32 {
-        match self {
-            MerlError::Format(_) => crate::cli::EXIT_INPUT,
-            MerlError::Io(_, std::io::ErrorKind::NotFound) => crate::cli::EXIT_INPUT,
-            MerlError::Io(..) => crate::cli::EXIT_FAILURE,
-        }
-    }
 }
 
 impl std::fmt::Display for MerlError {
@@ -635,7 +626,7 @@ pub fn albedo_table_until(
     m: &Arc<Merl>,
     n: usize,
     tol: f64,
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Option<Vec<AlbedoRow>> {
     let rows: Vec<Option<AlbedoRow>> = (0..n)
         .into_par_iter()

@@ -2,7 +2,6 @@
 //! `docs/metadata.md`): everything an engine needs to sample the texture without guessing.
 
 use crate::lut::{Axis, Convention, Lut, Quantity};
-use crate::model::Masking;
 use crate::preset::PresetTable;
 use crate::table::{DfgLayout, Storage, TableKind, TableSpec};
 use serde_json::{json, Value};
@@ -10,6 +9,9 @@ use sha2::{Digest, Sha256};
 
 /// The metadata schema identifier.
 pub const SCHEMA: &str = "brdfbake.lut/1";
+/// The sidecar `table.kind` of the tables `measured --out` writes (no preset table behind
+/// them, nothing to recompute them from).
+pub const MEASURED_TABLE_KIND: &str = "measured-albedo";
 /// brdfbake's version, recorded in every output and in the input hash.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
@@ -218,114 +220,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         .zip(&lut.error_estimate)
         .map(|(c, e)| (c.name.clone(), json!(e)))
         .collect();
-    let method = match spec.kind {
-        TableKind::Ndf | TableKind::Vgroove => "closed form, evaluated in f64".to_string(),
-        TableKind::G1 | TableKind::G2 => match spec.model.ndf {
-            Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
-            _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
-        },
-        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
-            crate::table::classic::method(spec)
-        }
-        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation. Fibres: the eta >= 1 texels of one (mu, roughness), whose breakpoints are the same, are integrated together, up to 4, as the channels (R, T of each) of one such rule: nodes, D, G1(v) and the reflected direction computed once, each eta's Fresnel factor and refracted direction per node; a panel is refined until every channel's own estimate meets its share, and each texel keeps its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve".into(),
-        TableKind::Albedo
-        | TableKind::AlbedoAvg
-        | TableKind::Dfg
-        | TableKind::KullaConty
-        | TableKind::AlbedoFresnel
-            if spec.model.masking != Masking::VGroove || spec.model.ndf.is_none() =>
-        {
-            let outer = if spec.kind == TableKind::AlbedoAvg {
-                "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. "
-            } else if spec.kind == TableKind::KullaConty {
-                "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. "
-            } else {
-                ""
-            };
-            format!("{outer}{}", crate::hemisphere::tensor::METHOD)
-        }
-        // V-groove masking with an NDF: the branch-split tensor rule
-        _ => {
-            let outer = match spec.kind {
-                TableKind::AlbedoAvg => "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. ",
-                TableKind::KullaConty => "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. ",
-                _ => "",
-            };
-            format!("{outer}{}", crate::kernels::vgroove::METHOD)
-        }
-    };
-    let method =
-        if spec.kind == TableKind::Dfg && spec.cloth && spec.model.masking == Masking::VGroove {
-            format!(
-                "{method}. Cloth channel B: {}",
-                crate::hemisphere::tensor::METHOD
-            )
-        } else {
-            method
-        };
-    let kernel = match spec.kind {
-        TableKind::Dfg => {
-            spec.cloth || crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
-        }
-        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty => {
-            crate::table::albedo::uses_kernel(&spec.model)
-        }
-        // Schlick slices of GGX + Smith: E = F0·A + B from the polar split sum
-        TableKind::AlbedoFresnel => {
-            matches!(spec.axes[2].quantity, Quantity::Fresnel(q) if q.is_f0())
-                && spec.model.diffuse_weight == 0.0
-                && crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
-        }
-        _ => false,
-    };
-    let charlie_albedo = matches!(
-        spec.kind,
-        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty
-    ) && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
-    let method = if kernel && charlie_albedo {
-        // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
-        // (src/table/albedo.rs `charlie_kernels`)
-        format!(
-            "Charlie/Ashikhmin cloth kernel: {}; where that declines (views within 1e-3 of the normal) or fails, the generic path: {method}",
-            crate::kernels::sheen_azimuth::METHOD,
-        )
-    } else if kernel {
-        format!(
-            "{} (GGX with Smith masking); where its estimate fails, the generic path: {method}",
-            crate::kernels::ggx_polar::METHOD,
-        )
-    } else {
-        method
-    };
-    let method = if crate::table::energy::uses_fresnel_fibre(spec) {
-        format!(
-            "{} Where that fails, texel by texel: {method}",
-            crate::table::energy::FRESNEL_FIBRE_METHOD
-        )
-    } else {
-        method
-    };
-    let method = if spec.kind == TableKind::Dfg && crate::table::dfg_lines::interpolated(spec) {
-        format!(
-            "Split-sum channels by lines (src/table/dfg_lines.rs): on tables of at least 128 columns, the rows with alpha >= 1/64, and those of [1/256, 1/64) where that band holds at least 24 rows, on grids: interpolated across the table in x = sqrt(mu) from whole columns (at tolerance/8), each column interpolated along the roughness axis in y = ln(alpha) (nodes at tolerance/4 of the column's); every other row along the row in x = sqrt(mu), cut at mu = 0.073 too. Lines across the table are first cut at mu = 0.01 (texels closer to grazing: usually computed directly, a column at a time on grids). Interpolation: {} Each quadrature: {method}",
-            crate::quadrature::interp1d::METHOD
-        )
-    } else {
-        method
-    };
-    let method = if spec.kind == TableKind::Dfg && spec.cloth {
-        let interpolated = if crate::table::dfg_lines::interpolated(spec) {
-            "interpolated by the same rule: wide lobes (1/16 <= alpha <= 1) on a grid as above (columns in y = sqrt(alpha), their nodes at tolerance/4 of the column's) on tables of at least 128 columns, else along each column in y = sqrt(alpha) (nodes at tolerance/4); narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) above mu = 0.04 (nodes at tolerance/8) and below it texel by texel; or, from 64 narrow rows on, below mu = 0.01 along each texel column in y = ln(alpha) and above it on a grid for alpha >= 1/1024 (columns in y = sqrt(alpha)), by rows below (nodes at tolerance/8); each node or direct texel: "
-        } else {
-            ""
-        };
-        format!(
-            "{method}. Cloth channel B {interpolated}first {}; where that declines or fails, the generic path above",
-            crate::kernels::sheen_azimuth::METHOD,
-        )
-    } else {
-        method
-    };
+    let method = crate::table::methods::describe(spec);
     let mut layout = format!(
         "channels interleaved per texel; x (axis 0, u) fastest, then y (axis 1, v, one image row per y){}",
         if dims.len() == 3 { ", then z (axis 2, slice)" } else { "" }

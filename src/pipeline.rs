@@ -107,7 +107,7 @@ pub fn bake_preset_until(
     preset: &Preset,
     out: &Path,
     formats: Option<&[Format]>,
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Result<(Vec<BakedTable>, Files), PipelineError> {
     let dir = table_dir(out, &preset.name);
     let mut baked = Vec::new();

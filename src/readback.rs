@@ -129,8 +129,8 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         }
         sealed.map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
         // `measured --out` tables have no preset table to rebuild (nor an input hash)
-        let measured = v.pointer("/table/kind").and_then(Value::as_str)
-            == Some(crate::cli::MEASURED_TABLE_KIND);
+        let measured =
+            v.pointer("/table/kind").and_then(Value::as_str) == Some(meta::MEASURED_TABLE_KIND);
         if !measured {
             let table = table_from_sidecar(&v)
                 .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;

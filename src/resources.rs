@@ -8,6 +8,7 @@
 //! atomically ([`crate::pipeline`]), and while a table bakes it also holds one result per
 //! texel (two small `Vec<f64>` of value and error estimate).
 
+use crate::numfmt::{human_bytes, human_seconds};
 use crate::preset::{Format, Preset, PresetTable};
 use crate::table::Storage;
 
@@ -131,14 +132,14 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     use crate::table::TableKind as K;
     let spec = &t.spec;
     let vgroove = spec.model.masking == Masking::VGroove;
-    let polar = crate::table::dfg::uses_kernel(spec.model.ndf, spec.model.masking);
-    let polar_albedo = polar && crate::table::albedo::uses_kernel(&spec.model);
+    let polar = crate::table::methods::split_sum_uses_kernel(spec.model.ndf, spec.model.masking);
+    let polar_albedo = polar && crate::table::methods::albedo_uses_kernel(&spec.model);
     // Charlie + Ashikhmin albedo through the cloth kernels (src/table/albedo.rs
     // `charlie_kernels`, column by column): 78 per texel with the θh kernel
     // (src/kernels/sheen_azimuth.rs; `sheen-charlie`, 80,305 evaluations over 1,024
     // texels, 2026-11-30), most of them an `exp` on node data the column shares; 1,359 with
     // the light-direction kernels, 1,756 with the half-vector kernel alone
-    let cloth_albedo = crate::table::albedo::uses_kernel(&spec.model)
+    let cloth_albedo = crate::table::methods::albedo_uses_kernel(&spec.model)
         && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
     // V-groove albedo: 1,923 per texel with the closed-form Beckmann kernel and the ordered
     // tolerance sharing (`cook-torrance-1982`/albedo, 1,968,969 evaluations over 1,024
@@ -173,7 +174,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // the pair 3.08 M at 128², 6.90 M at 512² (2.8 M + 16 per texel), the cloth channel
         // 0.87 M and 1.31 M (0.85 M + 2 per texel)
         K::Dfg => {
-            let interpolated = crate::table::dfg_lines::interpolated(spec);
+            let interpolated = crate::table::methods::split_sum_by_lines(spec);
             let nx = spec.axes[0].size as f64;
             if interpolated && nx >= crate::table::dfg_lines::GRID_MIN_COLUMNS as f64 {
                 let (cloth, cloth_fixed) = if spec.cloth {
@@ -202,7 +203,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // exact Fresnel slices go by fibres (all slices of one (μ, r) as the channels of one
         // rule, nodes counted once): 141 per texel on `fresnel-albedo`/e-dielectric (847 texel
         // by texel; fib6, 2026-11-30, `examples/fibre_check.rs`)
-        K::AlbedoFresnel if crate::table::energy::uses_fresnel_fibre(spec) => (150.0, 0.0),
+        K::AlbedoFresnel if crate::table::methods::uses_fresnel_fibre(spec) => (150.0, 0.0),
         K::AlbedoFresnel => (1_200.0, 0.0),
         // measured 5,042 per texel (`dielectric-btdf`, 2026-11-29; 19,551 in the paragraph
         // above was before the closed-form kinks and Clenshaw–Curtis panels of
@@ -354,58 +355,6 @@ impl std::ops::Add for TimeEstimate {
     }
 }
 
-/// A point in time after which a running bake gives up (the run-time side of `--max-time`,
-/// for inputs the estimate underrates: it is checked before every texel).
-#[derive(Clone, Copy, Debug)]
-pub struct Deadline {
-    pub at: std::time::Instant,
-    /// The limit it was made from, for messages.
-    pub seconds: f64,
-}
-
-impl Deadline {
-    /// `seconds` from now (far in the future if that overflows `Instant`).
-    pub fn after(seconds: f64) -> Deadline {
-        let now = std::time::Instant::now();
-        let d = std::time::Duration::try_from_secs_f64(seconds)
-            .unwrap_or(std::time::Duration::from_secs(u32::MAX as u64));
-        Deadline {
-            at: now
-                .checked_add(d)
-                .unwrap_or(now + std::time::Duration::from_secs(1 << 30)),
-            seconds,
-        }
-    }
-
-    pub fn passed(&self) -> bool {
-        std::time::Instant::now() >= self.at
-    }
-}
-
-/// Seconds for people: `850 ms`, `12.3 s`, `4.5 min`, `2.1 h`.
-pub fn human_seconds(s: f64) -> String {
-    if s < 1.0 {
-        format!("{:.0} ms", s * 1e3)
-    } else if s < 120.0 {
-        format!("{s:.1} s")
-    } else if s < 7200.0 {
-        format!("{:.1} min", s / 60.0)
-    } else {
-        format!("{:.1} h", s / 3600.0)
-    }
-}
-
-/// `bytes` for people: `1.5 GiB`, `12.0 MiB`, `512 bytes`.
-pub fn human(bytes: u64) -> String {
-    const UNITS: [(&str, u64); 3] = [("GiB", 1 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)];
-    for (name, size) in UNITS {
-        if bytes >= size {
-            return format!("{:.1} {name}", bytes as f64 / size as f64);
-        }
-    }
-    format!("{bytes} bytes")
-}
-
 /// Parses a memory size: a whole number of bytes with an optional unit `K`, `M`, `G`, `T`
 /// (powers of 1024; `KiB`, `MiB`, ... and `KB`, `MB`, ... are read the same), e.g. `4GiB`,
 /// `512M`, `1000000`. Zero is refused.
@@ -466,8 +415,8 @@ pub fn check_memory_of(
     Err(format!(
         "{what} needs an estimated {} of memory ({detail}), more than the limit of {}: raise it with \
          --max-memory SIZE (e.g. --max-memory {}), or {smaller}",
-        human(bytes),
-        human(limit),
+        human_bytes(bytes),
+        human_bytes(limit),
         suggest(bytes)
     ))
 }
@@ -531,9 +480,9 @@ mod tests {
 
     #[test]
     fn human_sizes() {
-        assert_eq!(human(512), "512 bytes");
-        assert_eq!(human(3 << 20), "3.0 MiB");
-        assert_eq!(human(3 << 29), "1.5 GiB");
+        assert_eq!(human_bytes(512), "512 bytes");
+        assert_eq!(human_bytes(3 << 20), "3.0 MiB");
+        assert_eq!(human_bytes(3 << 29), "1.5 GiB");
     }
 
     #[test]

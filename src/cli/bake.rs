@@ -208,7 +208,7 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     let time = crate::resources::estimate_time(&presets);
     crate::resources::check_time(&time, pool.current_num_threads(), a.guards.max_time)
         .map_err(CliError::input)?;
-    let deadline = crate::resources::Deadline::after(a.guards.max_time);
+    let deadline = crate::deadline::Deadline::after(a.guards.max_time);
     // Bake everything in memory first, then write all presets' files in one atomic set:
     // a failure anywhere leaves every previous output as it was.
     let to_err = CliError::from;

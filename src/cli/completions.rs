@@ -1,7 +1,7 @@
-//! `brdfbake completions SHELL` and `brdfbake man`: generated from the clap definition.
+//! `brdfbake completions SHELL` and `brdfbake man`: generated from the clap definition,
+//! which the caller passes in (`Cli::command()`).
 
-use super::CliError;
-use clap::CommandFactory;
+use super::error::{stdout_error, CliError};
 use std::io::Write;
 
 #[derive(clap::Args, Debug)]
@@ -21,20 +21,18 @@ fn write_out(bytes: &[u8]) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
     out.write_all(bytes)
         .and_then(|_| out.flush())
-        .map_err(|e| CliError::env(format!("cannot write to stdout: {e}")))
+        .map_err(stdout_error)
 }
 
 /// Prints a completion script: e.g. `brdfbake completions bash > /etc/bash_completion.d/brdfbake`.
-pub fn run(a: CompletionsArgs) -> Result<(), CliError> {
-    let mut cmd = super::Cli::command();
+pub fn run(a: CompletionsArgs, mut cmd: clap::Command) -> Result<(), CliError> {
     let mut buf = Vec::new();
     clap_complete::generate(a.shell, &mut cmd, "brdfbake", &mut buf);
     write_out(&buf)
 }
 
 /// Prints a roff man page: `brdfbake man > brdfbake.1`, `brdfbake man bake > brdfbake-bake.1`.
-pub fn run_man(a: ManArgs) -> Result<(), CliError> {
-    let mut cmd = super::Cli::command();
+pub fn run_man(a: ManArgs, mut cmd: clap::Command) -> Result<(), CliError> {
     cmd.build();
     let page = match &a.subcommand {
         None => cmd,

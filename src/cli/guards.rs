@@ -4,7 +4,8 @@
 //! fits: exit 1, nothing written). The estimates are in [`crate::resources`].
 
 use super::CliError;
-use crate::resources::{check_memory_of, check_time_of, Deadline, TimeEstimate};
+use crate::deadline::Deadline;
+use crate::resources::{check_memory_of, check_time_of, TimeEstimate};
 
 #[derive(clap::Args, Debug, Clone, Copy)]
 pub struct Guards {
@@ -63,6 +64,6 @@ pub fn stopped(what: &str, d: &Deadline) -> CliError {
     CliError::env(format!(
         "{what} stopped at the time limit of {} (--max-time) before it finished; nothing was written: \
          raise the limit or ask for less",
-        crate::resources::human_seconds(d.seconds)
+        crate::numfmt::human_seconds(d.seconds)
     ))
 }

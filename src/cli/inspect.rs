@@ -34,7 +34,7 @@ pub(super) fn admit_read(
     guards: &super::guards::Guards,
     what: &str,
     path: &Path,
-) -> Result<crate::resources::Deadline, CliError> {
+) -> Result<crate::deadline::Deadline, CliError> {
     let bytes = file_bytes(path);
     guards.admit(&super::guards::Work {
         what,

@@ -65,7 +65,7 @@ fn albedo_table(
     m: &dyn Reflectance,
     n: usize,
     tol: f64,
-    deadline: &crate::resources::Deadline,
+    deadline: &crate::deadline::Deadline,
 ) -> Option<Vec<TableRow>> {
     use rayon::prelude::*;
     let phis = crate::laws::incoming_phis_deg(m.isotropic());
@@ -347,10 +347,7 @@ pub fn parse_model(spec: &str) -> Result<Vec<Box<dyn Reflectance>>, CliError> {
                     "model merl: give the file as merl:PATH (a MERL .binary file)",
                 ));
             }
-            let m = crate::merl::Merl::read(std::path::Path::new(rest)).map_err(|e| CliError {
-                code: e.exit_code(),
-                msg: e.to_string(),
-            })?;
+            let m = crate::merl::Merl::read(std::path::Path::new(rest)).map_err(CliError::from)?;
             let m = std::sync::Arc::new(m);
             Ok((0..3)
                 .map(|c| {

@@ -85,10 +85,7 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
         threads: rayon::current_num_threads(),
         smaller: "a smaller --albedo-size, or fewer --fit models",
     })?;
-    let m = Merl::read(&a.file).map_err(|e| CliError {
-        code: e.exit_code(),
-        msg: e.to_string(),
-    })?;
+    let m = Merl::read(&a.file).map_err(CliError::from)?;
     let m = Arc::new(m);
     let table = albedo_table_until(&m, a.albedo_size, a.tolerance, Some(&deadline))
         .ok_or_else(|| super::guards::stopped("this measured run", &deadline))?;

@@ -14,8 +14,7 @@ use crate::table::Storage;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
-/// The sidecar's `table.kind` of a measured albedo table.
-pub const KIND: &str = "measured-albedo";
+use crate::meta::MEASURED_TABLE_KIND as KIND;
 
 /// The texture and sidecar (path, bytes) for the albedo rows of `m` read from `file`.
 pub fn files(

@@ -12,6 +12,7 @@ macro_rules! outln {
 
 mod bake;
 mod completions;
+mod error;
 mod eval;
 mod guards;
 mod inspect;
@@ -19,21 +20,15 @@ mod laws;
 mod list;
 mod measured;
 mod measured_table;
-/// The sidecar kind of the tables `measured --out` writes.
-pub const MEASURED_TABLE_KIND: &str = measured_table::KIND;
 mod probe;
 mod report;
 mod verify;
 
+pub(crate) use error::{bake_error, stdout_error};
+pub use error::{CliError, EXIT_FAILURE, EXIT_INPUT, EXIT_OK};
+
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;
-
-/// Exit code for success.
-pub const EXIT_OK: i32 = 0;
-/// Exit code for a failure of the environment (I/O, permissions, disk).
-pub const EXIT_FAILURE: i32 = 1;
-/// Exit code for bad input (arguments, presets).
-pub const EXIT_INPUT: i32 = 2;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -73,54 +68,6 @@ pub enum Command {
     Man(completions::ManArgs),
 }
 
-/// An error with its exit code.
-#[derive(Debug)]
-pub struct CliError {
-    pub code: i32,
-    pub msg: String,
-}
-
-impl CliError {
-    pub fn input(msg: impl Into<String>) -> Self {
-        CliError {
-            code: EXIT_INPUT,
-            msg: msg.into(),
-        }
-    }
-    pub fn env(msg: impl Into<String>) -> Self {
-        CliError {
-            code: EXIT_FAILURE,
-            msg: msg.into(),
-        }
-    }
-}
-
-impl From<crate::pipeline::PipelineError> for CliError {
-    fn from(e: crate::pipeline::PipelineError) -> Self {
-        use crate::pipeline::PipelineError as P;
-        match e {
-            P::Input(m) => CliError::input(m),
-            P::Environment(m) | P::Failed(m) => CliError::env(m),
-        }
-    }
-}
-
-/// The error of a table that did not bake: exit 1 for one that ran out of time or missed its
-/// tolerance (the inputs were valid), exit 2 for invalid inputs.
-pub(crate) fn bake_error(preset: &str, e: crate::table::BakeError) -> CliError {
-    use crate::table::BakeError as B;
-    let msg = format!("preset {preset}: {e}");
-    match e {
-        B::TimeLimit { .. } | B::ToleranceMissed { .. } => CliError::env(msg),
-        _ => CliError::input(msg),
-    }
-}
-
-/// The error of a failed write to stdout.
-pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
-    CliError::env(format!("cannot write to stdout: {e}"))
-}
-
 /// Runs the CLI and returns the process exit code.
 pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     let cli = match Cli::try_parse_from(args) {
@@ -147,8 +94,8 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Command::Report(a) => report::run(a),
         Command::Laws(a) => laws::run(a),
         Command::Measured(a) => measured::run(a),
-        Command::Completions(a) => completions::run(a),
-        Command::Man(a) => completions::run_man(a),
+        Command::Completions(a) => completions::run(a, <Cli as clap::CommandFactory>::command()),
+        Command::Man(a) => completions::run_man(a, <Cli as clap::CommandFactory>::command()),
     };
     match r {
         Ok(()) => EXIT_OK,

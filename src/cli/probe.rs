@@ -73,7 +73,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
                 "{}: a table of `measured --out` (kind {}): there is no exact value to probe against \
                  (the data are measured); `inspect` shows it",
                 a.file.display(),
-                super::MEASURED_TABLE_KIND
+                crate::meta::MEASURED_TABLE_KIND
             ));
         }
         CliError::input(format!(

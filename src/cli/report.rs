@@ -39,9 +39,10 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
                 MAX_INC_BYTES,
                 "a dfg.inc as Filament's cmgen writes it",
             )
-            .map_err(|e| CliError {
-                code: e.exit_code(),
-                msg: format!("--filament-dfg: {e}"),
+            .map_err(|e| {
+                let mut e = CliError::from(e);
+                e.msg = format!("--filament-dfg: {}", e.msg);
+                e
             })?;
             let text = String::from_utf8(bytes).map_err(|_| {
                 CliError::input(format!(

@@ -109,7 +109,7 @@ pub fn verify_texels(
     lut: &Lut,
     scale: f64,
     texels: &[[usize; 3]],
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Result<Option<(usize, Vec<ChannelError>)>, String> {
     let stopped = std::sync::atomic::AtomicBool::new(false);
     let exact: Vec<Result<Vec<f64>, String>> = texels
@@ -202,7 +202,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     "{}: a table of `measured --out` (kind {}): nothing to recompute it from but the \
                      measured file; run `brdfbake measured` again",
                     p.display(),
-                    super::MEASURED_TABLE_KIND
+                    crate::meta::MEASURED_TABLE_KIND
                 ));
             }
             CliError::input(format!(

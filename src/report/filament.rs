@@ -175,7 +175,7 @@ pub fn exact_values(shipped: &ShippedDfg) -> usize {
 pub fn compare_until(
     shipped: &ShippedDfg,
     tol: f64,
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Option<Comparison> {
     let n = shipped.size;
     let nc = shipped.channels;

@@ -2,40 +2,22 @@
 //! BRDF (its own Fresnel, its diffuse lobe), and its cosine-weighted average
 //! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
 
+use super::methods::{albedo_uses_kernel, charlie_kernels, kernel_smith, vgroove_fast_path};
+use super::texel::brdfs_per_roughness;
 use super::{TableKind, TableSpec, TexelResult};
 use crate::hemisphere::tensor::integrate_over_l_smooth;
 use crate::hemisphere::{integrate_over_l, LobeWarp};
-use crate::kernels::sheen_azimuth::{self, View};
+use crate::kernels::sheen_azimuth::View;
 use crate::kernels::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, TailCut};
 use crate::model::{Brdf, Masking};
 use crate::quadrature::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use crate::quadrature::{integrate, Tolerance};
-use rayon::prelude::*;
 use std::f64::consts::PI;
-
-/// One BRDF per roughness texel, with any lazily built numeric G1 forced now (in parallel,
-/// deterministically: each is a pure function of its α).
-pub(crate) fn brdfs_per_roughness(spec: &TableSpec) -> Vec<Brdf> {
-    let r = spec.axes.last().expect("roughness axis");
-    (0..r.size)
-        .into_par_iter()
-        .map(|i| {
-            let b = spec
-                .model
-                .brdf(r.alpha(i).expect("roughness axis"))
-                .expect("validated");
-            if let Some(s) = &b.specular {
-                s.prepare();
-            }
-            b
-        })
-        .collect()
-}
 
 /// E(μ) for one BRDF, to absolute tolerance `tol`. Returns `([value], [error], evaluations)`.
 ///
 /// GGX with Smith masking and Charlie with Ashikhmin's visibility (F = 1, no diffuse lobe,
-/// see [`uses_kernel`]) use their specialised kernels first (GGX: the 1D polar one,
+/// see [`albedo_uses_kernel`]) use their specialised kernels first (GGX: the 1D polar one,
 /// [`ggx_polar`](crate::kernels::ggx_polar); Charlie: the θh cloth kernel, `charlie_kernels`); other smooth
 /// models, and texels where a kernel's estimate does not reach the tolerance, the fast tensor
 /// rule ([`integrate_over_l_smooth`], falling back to the adaptive integrator per texel); the
@@ -96,9 +78,7 @@ fn directional_albedo_in(
         .as_ref()
         .filter(|_| brdf.diffuse_weight == 0.0 && mu > 0.0)
     {
-        if let (crate::model::Fresnel::Schlick { f0 }, Some(smith)) =
-            (s.fresnel, super::dfg::kernel_smith(s))
-        {
+        if let (crate::model::Fresnel::Schlick { f0 }, Some(smith)) = (s.fresnel, kernel_smith(s)) {
             if f0.abs() <= 1.0 {
                 match crate::kernels::ggx_polar::ggx_split_sum(mu, s.ndf.alpha(), smith, 0.5 * tol)
                 {
@@ -120,7 +100,7 @@ fn directional_albedo_in(
         brdf.diffuse_weight == 0.0 && s.fresnel == crate::model::Fresnel::None && mu > 0.0
     }) {
         use crate::model::NdfKind;
-        if let Some(smith) = super::dfg::kernel_smith(s) {
+        if let Some(smith) = kernel_smith(s) {
             match crate::kernels::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
                 Ok(e) => return (e.value, e.error, e.evals + spent),
                 Err(n) => spent += n,
@@ -144,33 +124,13 @@ fn directional_albedo_in(
     (e.value, e.error, e.evals + spent)
 }
 
-/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by the
-/// cloth kernel, as the `filament-dfg` cloth channel computes it: [`sheen_azimuth`] (a 1D
-/// integral over θh with the azimuthal integral in closed form; it shares its node data for
-/// wide lobes along the view's column, and declines views within 1e-3 of the normal);
-/// `Err(evaluations spent)` where it declines or does not reach `tol` (the caller falls back
-/// to the generic path). The same bits whether `view` is shared by a column or the texel's
-/// own.
-pub(crate) fn charlie_kernels(
-    view: &View,
-    alpha: f64,
-    tol: f64,
-) -> Result<crate::quadrature::Estimate<1>, u64> {
-    sheen_azimuth::charlie_sheen_azimuth_shared(
-        view.mu(),
-        alpha,
-        tol,
-        &mut view.azimuth().borrow_mut(),
-    )
-}
-
 /// Whether an albedo table is baked column by column ([`column_fn`]): Charlie/Ashikhmin
 /// lobes with F = 1 and no diffuse lobe, whose cloth kernels share node data between the
 /// roughnesses of a column (one view μ).
 pub(crate) fn by_column(spec: &TableSpec) -> bool {
     use crate::model::NdfKind;
     spec.kind == TableKind::Albedo
-        && uses_kernel(&spec.model)
+        && albedo_uses_kernel(&spec.model)
         && spec.model.ndf == Some(NdfKind::Charlie)
 }
 
@@ -201,44 +161,6 @@ pub(crate) fn column_fn(spec: &TableSpec) -> Box<dyn Fn(usize) -> Vec<TexelResul
             })
             .collect()
     })
-}
-
-/// Whether the V-groove fast path ([`integrate_over_l_kinked`]) may take this lobe, and the
-/// tail it may leave out. Not where the Fresnel factor has a kink of its own: a dielectric
-/// with η < 1 switches to total internal reflection at v·h = √(1 − η²), a curve the branch
-/// split does not follow (`None`: the adaptive integrator, which bisects towards it). The
-/// tail cut only for a Beckmann lobe alone (no diffuse lobe, whose n·l does not decay with
-/// θh; every Fresnel factor is ≤ 1), leaving out at most 10⁻⁴ of the tolerance.
-pub(crate) fn vgroove_fast_path(
-    s: &crate::model::Specular,
-    diffuse_weight: f64,
-    tol: f64,
-) -> Option<TailCut> {
-    use crate::model::{Fresnel, NdfKind};
-    if matches!(s.fresnel, Fresnel::Dielectric { eta } if eta < 1.0) {
-        return None;
-    }
-    Some(
-        if s.ndf.kind() == NdfKind::Beckmann && diffuse_weight == 0.0 {
-            TailCut::beckmann_vgroove(1e-4 * tol)
-        } else {
-            TailCut::NONE
-        },
-    )
-}
-
-/// Whether [`directional_albedo`] tries the specialised kernels for this model.
-pub fn uses_kernel(model: &super::ModelSpec) -> bool {
-    use crate::model::NdfKind;
-    model.diffuse_weight == 0.0
-        && model.fresnel == crate::model::Fresnel::None
-        && matches!(
-            (model.ndf, model.masking),
-            (
-                Some(NdfKind::Ggx),
-                Masking::SmithHeightCorrelated | Masking::SmithSeparable
-            ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
-        )
 }
 
 /// [`directional_albedo`] by the adaptive integrator alone.

@@ -13,12 +13,12 @@
 //! measurements). Other models go column by column (`column_fn`), texel by texel; this
 //! module holds the per-texel integrals both use.
 
-use super::albedo::brdfs_per_roughness;
+use super::methods::{charlie_kernels, kernel_smith};
+use super::texel::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
 use crate::hemisphere::tensor::integrate_over_l_smooth;
 use crate::hemisphere::{integrate_over_l, Node};
 use crate::kernels::ggx_polar;
-use crate::kernels::ggx_polar::Smith;
 use crate::kernels::sheen_azimuth::View;
 use crate::kernels::vgroove::{integrate_over_l_kinked, TailCut};
 use crate::model::fresnel::schlick_weight;
@@ -39,7 +39,7 @@ pub fn split_sum(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64; 2], u64
     };
     let e = if spec.masking == Masking::VGroove {
         // (F = 1 here, and both channels are at most f·(n·l): the tail cut holds for each)
-        let tail = super::albedo::vgroove_fast_path(spec, 0.0, tol).unwrap_or(TailCut::NONE);
+        let tail = super::methods::vgroove_fast_path(spec, 0.0, tol).unwrap_or(TailCut::NONE);
         integrate_over_l_kinked(mu, spec.warp(), tail, tol, g)
     } else {
         integrate_over_l_smooth(mu, Some(&spec.ndf), tol, g)
@@ -78,26 +78,6 @@ pub fn sheen_albedo_adaptive(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
     };
     let e = integrate_over_l(mu, sheen.ndf.warp(), tol, |n| [sheen.cosine_weighted(n)]);
     (e.value[0], e.error[0], e.evals)
-}
-
-/// The Smith form the specialised GGX kernels (2D and polar) handle for this lobe, if they
-/// do (GGX with Smith masking; the split sums ignore the lobe's own Fresnel).
-pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
-    match (s.ndf.kind(), s.masking) {
-        (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
-        (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
-        _ => None,
-    }
-}
-
-/// Whether a dfg table with this model uses the specialised kernels of
-/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels.
-pub fn uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
-    ndf == Some(NdfKind::Ggx)
-        && matches!(
-            masking,
-            Masking::SmithHeightCorrelated | Masking::SmithSeparable
-        )
 }
 
 /// [`split_sum`] through the specialised GGX kernel where it applies — the 1D polar one
@@ -196,7 +176,7 @@ impl Ctx {
 /// then the generic path; the evaluations of abandoned attempts are counted. A pure function
 /// of (μ, α, tol): the same bits whether the texel is computed alone or in its column.
 pub(super) fn cloth_texel(view: &View, alpha: f64, tol: f64) -> (f64, f64, u64) {
-    match super::albedo::charlie_kernels(view, alpha, tol) {
+    match charlie_kernels(view, alpha, tol) {
         Ok(e) => (e.value[0], e.error[0], e.evals),
         Err(n) => {
             let (v, e, m) = sheen_albedo(alpha, view.mu(), tol);

@@ -167,22 +167,6 @@ const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
 /// the pair goes by rows and the wide cloth lobes by columns alone.
 pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
-/// Whether `bake` bakes this table: 2D dfg tables whose split-sum channels go through the
-/// GGX kernels (analytic in √μ along a row, in ln α along a column), with view cosines
-/// increasing and positive. Lines too short to pay are computed texel by texel inside
-/// [`interp1d`].
-pub fn interpolated(spec: &TableSpec) -> bool {
-    let [x, _] = match spec.axes.as_slice() {
-        [x, y] => [x, y],
-        _ => return false,
-    };
-    super::dfg::uses_kernel(spec.model.ndf, spec.model.masking)
-        && spec.model.diffuse_weight == 0.0
-        && x.size >= 2
-        && x.coord(0) > 0.0
-        && (1..x.size).all(|i| x.coord(i) > x.coord(i - 1))
-}
-
 /// The variable in which a line along the roughness axis is interpolated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum RoughnessVar {
@@ -603,7 +587,7 @@ fn bake_with(
     detail: bool,
     limit: f64,
 ) -> Option<(Dense, Option<Detail>)> {
-    if !interpolated(spec) {
+    if !super::methods::split_sum_by_lines(spec) {
         return None;
     }
     let ctx = Ctx::new(spec);

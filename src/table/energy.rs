@@ -179,7 +179,7 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
     let tol = spec.tolerance;
     match spec.kind {
         TableKind::KullaConty => {
-            let brdfs = super::albedo::brdfs_per_roughness(spec);
+            let brdfs = super::texel::brdfs_per_roughness(spec);
             // E_avg of every row first (each a pure function of its α: deterministic)
             let avg: Vec<(f64, f64, u64)> =
                 brdfs.par_iter().map(|b| average_albedo(b, tol)).collect();
@@ -237,24 +237,8 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
     }
 }
 
-/// What the fibre path of an `albedo-fresnel` table does, as the sidecar's
-/// `quadrature.method` states it (followed by the per-texel method).
-pub const FRESNEL_FIBRE_METHOD: &str = "Fibres: the texels of one (mu, roughness) differ only in the Fresnel factor F(v.h), so up to 8 slices are integrated together as the channels of one nested Clenshaw-Curtis tensor rule (as below: nodes, D and G computed once, times each slice's exact Fresnel factor), refined until every channel's own estimate meets the tolerance; each texel keeps its own channel's estimate. Evaluations count the nodes, once however many slices they serve.";
-
 /// Slices integrated together by one rule of [`fresnel_fibre_fn`] (its channel count).
 const FRESNEL_FIBRE_SLICES: usize = 8;
-
-/// Whether an `albedo-fresnel` table goes by fibres: an exact (dielectric or conductor)
-/// Fresnel axis — Schlick slices are E = F0·A + B from the polar split sum already —, not
-/// V-groove masking (its kinked path, per texel) and a lobe the tensor rule takes in the warp
-/// u = asinh(tan θh/α), i.e. every NDF but Charlie (whose sheen warps have special cases).
-pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
-    spec.kind == TableKind::AlbedoFresnel
-        && matches!(spec.axes.get(2).map(|a| a.quantity), Some(Quantity::Fresnel(q)) if !q.is_f0())
-        && spec.model.masking != Masking::VGroove
-        && spec.model.diffuse_weight == 0.0
-        && spec.model.ndf.is_some_and(|k| k != NdfKind::Charlie)
-}
 
 /// E(μ) of one BRDF for several Fresnel terms at once: the directional albedo of `brdf`
 /// (whose own Fresnel term is ignored) with each of `fresnels` in turn, to absolute tolerance
@@ -321,7 +305,7 @@ pub fn directional_albedo_fresnels(
 /// ([`uses_fresnel_fibre`]): every slice of one (μ, roughness) by
 /// [`directional_albedo_fresnels`].
 fn fresnel_fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
-    if !uses_fresnel_fibre(spec) {
+    if !super::methods::uses_fresnel_fibre(spec) {
         return None;
     }
     let axes = spec.axes.clone();

@@ -7,14 +7,20 @@
 
 pub mod albedo;
 pub mod classic;
+pub mod classic_model;
 pub mod dfg;
 pub mod dfg_lines;
 pub mod dielectric;
 pub mod energy;
 pub mod local;
+pub mod methods;
 pub mod spec;
+pub mod texel;
+mod validate;
 
 pub use spec::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+pub use texel::MISSES_SHOWN;
+pub(crate) use texel::{FibreFn, Misses, TexelResult};
 
 use crate::lut::{Channel, Lut};
 use crate::numfmt::num;
@@ -29,7 +35,7 @@ pub enum BakeError {
     #[error(
         "table {name:?}: stopped at the time limit of {} (--max-time) before all {texels} texels were baked; \
          nothing was written: raise the limit, use more threads, or bake a smaller table",
-        crate::resources::human_seconds(*seconds)
+        crate::numfmt::human_seconds(*seconds)
     )]
     TimeLimit {
         name: String,
@@ -66,9 +72,6 @@ pub enum BakeError {
         value: f64,
     },
 }
-
-/// How many of the texels that missed the tolerance an error names.
-pub const MISSES_SHOWN: usize = 5;
 
 /// A texel channel whose quadrature error estimate exceeds what the table accepts.
 #[derive(Clone, Debug, PartialEq)]
@@ -123,79 +126,15 @@ fn tolerance_message(
     )
 }
 
-/// Collects the texel channels whose estimate exceeds `limit`: their count and the
-/// [`MISSES_SHOWN`] largest (ties: lowest texel index first, so the list is deterministic).
-#[derive(Debug, Default)]
-pub(crate) struct Misses {
-    pub count: usize,
-    /// (estimate, texel index, channel)
-    pub worst: Vec<(f64, usize, usize)>,
-}
-
-impl Misses {
-    /// Records channel `c` of texel `i` if `e` exceeds `limit` (or is NaN).
-    #[inline]
-    pub fn check(&mut self, limit: f64, i: usize, c: usize, e: f64) {
-        if e <= limit {
-            return;
-        }
-        self.count += 1;
-        let e = if e.is_nan() { f64::INFINITY } else { e };
-        self.worst.push((e, i, c));
-        if self.worst.len() > 4 * MISSES_SHOWN {
-            self.trim();
-        }
-    }
-
-    fn trim(&mut self) {
-        self.worst
-            .sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
-        self.worst.truncate(MISSES_SHOWN);
-    }
-
-    /// Adds another collection's misses.
-    pub fn merge(&mut self, o: Misses) {
-        self.count += o.count;
-        self.worst.extend(o.worst);
-        self.trim();
-    }
-}
-
 /// What a bake may do besides the spec itself.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct BakeOptions<'a> {
     /// Stop with [`BakeError::TimeLimit`] once this has passed (`bake --max-time`).
-    pub deadline: Option<&'a crate::resources::Deadline>,
+    pub deadline: Option<&'a crate::deadline::Deadline>,
     /// The largest per-texel error estimate accepted (default: the spec's tolerance); a
     /// table with a larger one fails with [`BakeError::ToleranceMissed`].
     pub accept_error_estimate: Option<f64>,
 }
-
-/// The result of one texel: a value and an error estimate per channel, and the
-/// evaluations it cost.
-#[derive(Clone, Debug)]
-pub(crate) struct TexelResult {
-    pub value: Vec<f64>,
-    pub error: Vec<f64>,
-    pub evals: u64,
-}
-
-impl TexelResult {
-    pub fn exact(value: Vec<f64>) -> Self {
-        let n = value.len();
-        TexelResult {
-            value,
-            error: vec![0.0; n],
-            evals: 0,
-        }
-    }
-}
-
-/// A table kind's fibre path: the texel results of the line of texels along axis 2 (every
-/// slice) at axis-0 index `i` and axis-1 index `j`, in slice order. For kinds whose texels
-/// along axis 2 (the Fresnel axis) share every quadrature node but a per-slice factor, so
-/// that one task integrates them together (`energy::fibre_fn`).
-pub(crate) type FibreFn = Box<dyn Fn(usize, usize) -> Vec<TexelResult> + Sync>;
 
 /// Bakes a table. Validates the spec first; never returns a table with NaN or Inf, nor one
 /// whose quadrature error estimate exceeds the spec's tolerance at any texel.
@@ -206,7 +145,7 @@ pub fn bake(spec: &TableSpec) -> Result<Lut, BakeError> {
 /// [`bake`] with a deadline.
 pub fn bake_until(
     spec: &TableSpec,
-    deadline: Option<&crate::resources::Deadline>,
+    deadline: Option<&crate::deadline::Deadline>,
 ) -> Result<Lut, BakeError> {
     bake_with(
         spec,

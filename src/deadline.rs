@@ -1,0 +1,31 @@
+//! The run-time side of every `--max-time`: a point in time after which running work gives
+//! up. Long loops (texels, albedos, fits) check it between items; the work is then an error
+//! and nothing is written.
+
+/// A point in time after which a running bake gives up (the run-time side of `--max-time`,
+/// for inputs the estimate underrates: it is checked before every texel).
+#[derive(Clone, Copy, Debug)]
+pub struct Deadline {
+    pub at: std::time::Instant,
+    /// The limit it was made from, for messages.
+    pub seconds: f64,
+}
+
+impl Deadline {
+    /// `seconds` from now (far in the future if that overflows `Instant`).
+    pub fn after(seconds: f64) -> Deadline {
+        let now = std::time::Instant::now();
+        let d = std::time::Duration::try_from_secs_f64(seconds)
+            .unwrap_or(std::time::Duration::from_secs(u32::MAX as u64));
+        Deadline {
+            at: now
+                .checked_add(d)
+                .unwrap_or(now + std::time::Duration::from_secs(1 << 30)),
+            seconds,
+        }
+    }
+
+    pub fn passed(&self) -> bool {
+        std::time::Instant::now() >= self.at
+    }
+}

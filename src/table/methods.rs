@@ -1,0 +1,258 @@
+//! Which methods each table kind tries for a texel, in order, and when it falls back: the
+//! one place that says so (the kinds' files call these choosers, and the sidecar's
+//! `quadrature.method` is [`describe`]'s text). Every chain ends in a method that always
+//! answers; a texel whose final estimate still exceeds its tolerance fails the bake.
+//!
+//! * `ndf`, `vgroove`, `g1`/`g2` with a closed-form Λ: closed forms. `g1`/`g2` of the
+//!   Gaussian NDF: Λ derived numerically from D (adaptive Gauss–Kronrod, piecewise
+//!   Chebyshev; `model/ndf.rs`).
+//! * `dfg` split-sum channels, GGX with Smith masking ([`split_sum_uses_kernel`]): on tables
+//!   of at least 128 columns by lines (`dfg_lines.rs`: interpolated in √μ and ln α from
+//!   quadrature nodes), each node or direct texel by the polar kernel
+//!   ([`crate::kernels::ggx_polar`]), where its estimate fails the generic path below. Other
+//!   models: the generic path.
+//! * `dfg` cloth channel, and `albedo` of Charlie + Ashikhmin ([`albedo_uses_kernel`]): the θh
+//!   kernel (`charlie_kernels`, [`crate::kernels::sheen_azimuth`]; it declines views within
+//!   1e-3 of the normal), then the generic path.
+//! * `albedo` (and the E of `albedo-avg`, `kulla-conty`) of GGX + Smith, F = 1: the polar
+//!   kernel's albedo; with Schlick's Fresnel, E = F0·A + B from the polar split sum; then the
+//!   generic path. V-groove masking: the branch-split rule (`vgroove_fast_path`,
+//!   [`crate::kernels::vgroove`]; Beckmann alone in closed-form pieces), then adaptive.
+//! * `albedo-fresnel` with exact Fresnel, `dielectric-btdf`: the Fresnel fibres (every slice
+//!   of one (μ, α) as the channels of one rule, `energy.rs`, `dielectric.rs`), texel by
+//!   texel where a fibre fails; `dielectric-btdf` by nested Clenshaw–Curtis panels between
+//!   its kinks, adaptive per panel where those fail.
+//! * `classic-albedo`: the 1D lobe kernels ([`crate::kernels::classic_lobes`]) for
+//!   Blinn-Phong, (modified) Phong and Ward–GMD, else the energy-law integrator.
+//! * The generic path of every smooth hemisphere integral: the tensor rule
+//!   ([`crate::hemisphere::tensor`]), then the adaptive integrator
+//!   ([`crate::hemisphere::integrate_over_l`]) where its estimate fails.
+
+use super::spec::{TableKind, TableSpec};
+use crate::kernels::ggx_polar::Smith;
+use crate::kernels::sheen_azimuth::{self, View};
+use crate::kernels::vgroove::TailCut;
+use crate::lut::Quantity;
+use crate::model::{Masking, NdfKind, Specular};
+
+/// The Smith form the specialised GGX kernels (2D and polar) handle for this lobe, if they
+/// do (GGX with Smith masking; the split sums ignore the lobe's own Fresnel).
+pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
+    match (s.ndf.kind(), s.masking) {
+        (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
+        (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+        _ => None,
+    }
+}
+
+/// Whether a dfg table with this model uses the specialised kernels of
+/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels.
+pub fn split_sum_uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
+    ndf == Some(NdfKind::Ggx)
+        && matches!(
+            masking,
+            Masking::SmithHeightCorrelated | Masking::SmithSeparable
+        )
+}
+
+/// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by the
+/// cloth kernel, as the `filament-dfg` cloth channel computes it: [`sheen_azimuth`] (a 1D
+/// integral over θh with the azimuthal integral in closed form; it shares its node data for
+/// wide lobes along the view's column, and declines views within 1e-3 of the normal);
+/// `Err(evaluations spent)` where it declines or does not reach `tol` (the caller falls back
+/// to the generic path). The same bits whether `view` is shared by a column or the texel's
+/// own.
+pub(crate) fn charlie_kernels(
+    view: &View,
+    alpha: f64,
+    tol: f64,
+) -> Result<crate::quadrature::Estimate<1>, u64> {
+    sheen_azimuth::charlie_sheen_azimuth_shared(
+        view.mu(),
+        alpha,
+        tol,
+        &mut view.azimuth().borrow_mut(),
+    )
+}
+
+/// Whether the V-groove fast path ([`integrate_over_l_kinked`]) may take this lobe, and the
+/// tail it may leave out. Not where the Fresnel factor has a kink of its own: a dielectric
+/// with η < 1 switches to total internal reflection at v·h = √(1 − η²), a curve the branch
+/// split does not follow (`None`: the adaptive integrator, which bisects towards it). The
+/// tail cut only for a Beckmann lobe alone (no diffuse lobe, whose n·l does not decay with
+/// θh; every Fresnel factor is ≤ 1), leaving out at most 10⁻⁴ of the tolerance.
+pub(crate) fn vgroove_fast_path(
+    s: &crate::model::Specular,
+    diffuse_weight: f64,
+    tol: f64,
+) -> Option<TailCut> {
+    use crate::model::{Fresnel, NdfKind};
+    if matches!(s.fresnel, Fresnel::Dielectric { eta } if eta < 1.0) {
+        return None;
+    }
+    Some(
+        if s.ndf.kind() == NdfKind::Beckmann && diffuse_weight == 0.0 {
+            TailCut::beckmann_vgroove(1e-4 * tol)
+        } else {
+            TailCut::NONE
+        },
+    )
+}
+
+/// Whether [`directional_albedo`](super::albedo::directional_albedo) tries the specialised kernels for this model.
+pub fn albedo_uses_kernel(model: &super::ModelSpec) -> bool {
+    use crate::model::NdfKind;
+    model.diffuse_weight == 0.0
+        && model.fresnel == crate::model::Fresnel::None
+        && matches!(
+            (model.ndf, model.masking),
+            (
+                Some(NdfKind::Ggx),
+                Masking::SmithHeightCorrelated | Masking::SmithSeparable
+            ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
+        )
+}
+
+/// Whether `dfg_lines.rs` bakes this table by lines: 2D dfg tables whose split-sum channels go through the
+/// GGX kernels (analytic in √μ along a row, in ln α along a column), with view cosines
+/// increasing and positive. Lines too short to pay are computed texel by texel inside
+/// [`crate::quadrature::interp1d`].
+pub fn split_sum_by_lines(spec: &TableSpec) -> bool {
+    let [x, _] = match spec.axes.as_slice() {
+        [x, y] => [x, y],
+        _ => return false,
+    };
+    split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
+        && spec.model.diffuse_weight == 0.0
+        && x.size >= 2
+        && x.coord(0) > 0.0
+        && (1..x.size).all(|i| x.coord(i) > x.coord(i - 1))
+}
+
+/// Whether an `albedo-fresnel` table goes by fibres: an exact (dielectric or conductor)
+/// Fresnel axis — Schlick slices are E = F0·A + B from the polar split sum already —, not
+/// V-groove masking (its kinked path, per texel) and a lobe the tensor rule takes in the warp
+/// u = asinh(tan θh/α), i.e. every NDF but Charlie (whose sheen warps have special cases).
+pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
+    spec.kind == TableKind::AlbedoFresnel
+        && matches!(spec.axes.get(2).map(|a| a.quantity), Some(Quantity::Fresnel(q)) if !q.is_f0())
+        && spec.model.masking != Masking::VGroove
+        && spec.model.diffuse_weight == 0.0
+        && spec.model.ndf.is_some_and(|k| k != NdfKind::Charlie)
+}
+
+/// What the fibre path of an `albedo-fresnel` table does, as the sidecar's
+/// `quadrature.method` states it (followed by the per-texel method).
+pub const FRESNEL_FIBRE_METHOD: &str = "Fibres: the texels of one (mu, roughness) differ only in the Fresnel factor F(v.h), so up to 8 slices are integrated together as the channels of one nested Clenshaw-Curtis tensor rule (as below: nodes, D and G computed once, times each slice's exact Fresnel factor), refined until every channel's own estimate meets the tolerance; each texel keeps its own channel's estimate. Evaluations count the nodes, once however many slices they serve.";
+
+/// The sidecar's `quadrature.method` of a table: every method its texels may take, in the
+/// order tried.
+pub fn describe(spec: &TableSpec) -> String {
+    let method = match spec.kind {
+        TableKind::Ndf | TableKind::Vgroove => "closed form, evaluated in f64".to_string(),
+        TableKind::G1 | TableKind::G2 => match spec.model.ndf {
+            Some(n) if n.closed_form_lambda() => "closed form Smith Lambda, evaluated in f64".into(),
+            _ => "Smith Lambda derived numerically from D: adaptive Gauss-Kronrod (G7/K15) of the slope-space integral, interpolated piecewise-Chebyshev".into(),
+        },
+        TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+            crate::table::classic::method(spec)
+        }
+        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation. Fibres: the eta >= 1 texels of one (mu, roughness), whose breakpoints are the same, are integrated together, up to 4, as the channels (R, T of each) of one such rule: nodes, D, G1(v) and the reflected direction computed once, each eta's Fresnel factor and refracted direction per node; a panel is refined until every channel's own estimate meets its share, and each texel keeps its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve".into(),
+        TableKind::Albedo
+        | TableKind::AlbedoAvg
+        | TableKind::Dfg
+        | TableKind::KullaConty
+        | TableKind::AlbedoFresnel
+            if spec.model.masking != Masking::VGroove || spec.model.ndf.is_none() =>
+        {
+            let outer = if spec.kind == TableKind::AlbedoAvg {
+                "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. "
+            } else if spec.kind == TableKind::KullaConty {
+                "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. "
+            } else {
+                ""
+            };
+            format!("{outer}{}", crate::hemisphere::tensor::METHOD)
+        }
+        // V-groove masking with an NDF: the branch-split tensor rule
+        _ => {
+            let outer = match spec.kind {
+                TableKind::AlbedoAvg => "E_avg: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu), each E(mu) as follows. ",
+                TableKind::KullaConty => "E_avg channel: adaptive Gauss-Kronrod (G7/K15) over mu of E(mu); E(mu), there and in the E channel, as follows. ",
+                _ => "",
+            };
+            format!("{outer}{}", crate::kernels::vgroove::METHOD)
+        }
+    };
+    let method =
+        if spec.kind == TableKind::Dfg && spec.cloth && spec.model.masking == Masking::VGroove {
+            format!(
+                "{method}. Cloth channel B: {}",
+                crate::hemisphere::tensor::METHOD
+            )
+        } else {
+            method
+        };
+    let kernel = match spec.kind {
+        TableKind::Dfg => spec.cloth || split_sum_uses_kernel(spec.model.ndf, spec.model.masking),
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty => {
+            albedo_uses_kernel(&spec.model)
+        }
+        // Schlick slices of GGX + Smith: E = F0·A + B from the polar split sum
+        TableKind::AlbedoFresnel => {
+            matches!(spec.axes[2].quantity, Quantity::Fresnel(q) if q.is_f0())
+                && spec.model.diffuse_weight == 0.0
+                && split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
+        }
+        _ => false,
+    };
+    let charlie_albedo = matches!(
+        spec.kind,
+        TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty
+    ) && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
+    let method = if kernel && charlie_albedo {
+        // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
+        // (src/table/albedo.rs `charlie_kernels`)
+        format!(
+            "Charlie/Ashikhmin cloth kernel: {}; where that declines (views within 1e-3 of the normal) or fails, the generic path: {method}",
+            crate::kernels::sheen_azimuth::METHOD,
+        )
+    } else if kernel {
+        format!(
+            "{} (GGX with Smith masking); where its estimate fails, the generic path: {method}",
+            crate::kernels::ggx_polar::METHOD,
+        )
+    } else {
+        method
+    };
+    let method = if uses_fresnel_fibre(spec) {
+        format!(
+            "{} Where that fails, texel by texel: {method}",
+            FRESNEL_FIBRE_METHOD
+        )
+    } else {
+        method
+    };
+    let method = if spec.kind == TableKind::Dfg && split_sum_by_lines(spec) {
+        format!(
+            "Split-sum channels by lines (src/table/dfg_lines.rs): on tables of at least 128 columns, the rows with alpha >= 1/64, and those of [1/256, 1/64) where that band holds at least 24 rows, on grids: interpolated across the table in x = sqrt(mu) from whole columns (at tolerance/8), each column interpolated along the roughness axis in y = ln(alpha) (nodes at tolerance/4 of the column's); every other row along the row in x = sqrt(mu), cut at mu = 0.073 too. Lines across the table are first cut at mu = 0.01 (texels closer to grazing: usually computed directly, a column at a time on grids). Interpolation: {} Each quadrature: {method}",
+            crate::quadrature::interp1d::METHOD
+        )
+    } else {
+        method
+    };
+    let method = if spec.kind == TableKind::Dfg && spec.cloth {
+        let interpolated = if split_sum_by_lines(spec) {
+            "interpolated by the same rule: wide lobes (1/16 <= alpha <= 1) on a grid as above (columns in y = sqrt(alpha), their nodes at tolerance/4 of the column's) on tables of at least 128 columns, else along each column in y = sqrt(alpha) (nodes at tolerance/4); narrow lobes (alpha < 1/16) along each row in x = sqrt(mu) above mu = 0.04 (nodes at tolerance/8) and below it texel by texel; or, from 64 narrow rows on, below mu = 0.01 along each texel column in y = ln(alpha) and above it on a grid for alpha >= 1/1024 (columns in y = sqrt(alpha)), by rows below (nodes at tolerance/8); each node or direct texel: "
+        } else {
+            ""
+        };
+        format!(
+            "{method}. Cloth channel B {interpolated}first {}; where that declines or fails, the generic path above",
+            crate::kernels::sheen_azimuth::METHOD,
+        )
+    } else {
+        method
+    };
+    method
+}

@@ -1,0 +1,289 @@
+//! Validation of a [`TableSpec`]: everything that can be checked before baking, with errors
+//! that name the field and what is accepted. Each kind's own rules live with the kind
+//! ([`super::energy::validate`], [`super::classic::validate`]); this file walks the axes and
+//! the model and hands over.
+
+use super::spec::{
+    DfgLayout, TableKind, TableSpec, MAX_AXIS_SIZE, MAX_TEXELS, MAX_TOLERANCE, MIN_COSINE,
+    MIN_TOLERANCE,
+};
+use crate::lut::{Convention, Quantity};
+use crate::model::{Fresnel, Masking, Ndf, NdfKind, RoughnessQuantity};
+
+impl TableSpec {
+    /// Checks everything that can be checked before baking: model/kind compatibility and
+    /// every texel's coordinate. Errors name the field (`tables[i].…` is prefixed by the
+    /// caller) and what is accepted.
+    pub fn validate(&self) -> Result<(), String> {
+        let kind = self.kind;
+        let names = kind.axis_names();
+        if self.axes.len() != names.len() {
+            return Err(format!("a {} table has axes {:?}", kind.name(), names));
+        }
+        let mut texels: usize = 1;
+        for (ax, want) in self.axes.iter().zip(names) {
+            if ax.name != *want {
+                return Err(format!(
+                    "axis {:?} should be {want:?} for a {} table",
+                    ax.name,
+                    kind.name()
+                ));
+            }
+            let f = format!("axes.{}", ax.name);
+            if ax.size == 0 || ax.size > MAX_AXIS_SIZE {
+                return Err(format!(
+                    "{f}.size must be in 1..={MAX_AXIS_SIZE}, got {}",
+                    ax.size
+                ));
+            }
+            texels = texels.saturating_mul(ax.size);
+            let [lo, hi] = ax.range;
+            if !(lo.is_finite() && hi.is_finite()) || lo > hi || (lo == hi && ax.size > 1) {
+                return Err(format!(
+                    "{f}.range must be two finite numbers [lo, hi] with lo < hi, got [{lo}, {hi}]",
+                    lo = crate::numfmt::num(lo),
+                    hi = crate::numfmt::num(hi)
+                ));
+            }
+            if ax.convention == Convention::Endpoints && ax.size < 2 {
+                return Err(format!("{f}: the endpoints convention needs size >= 2"));
+            }
+            match ax.quantity {
+                Quantity::Cosine => {
+                    if lo < 0.0 || hi > 1.0 {
+                        return Err(format!(
+                            "{f}.range must lie within [0, 1] (a cosine), got [{lo}, {hi}]",
+                            lo = crate::numfmt::num(lo),
+                            hi = crate::numfmt::num(hi)
+                        ));
+                    }
+                    let zero_ok = !matches!(
+                        (kind, ax.name.as_str()),
+                        (TableKind::Albedo, _)
+                            | (TableKind::Dfg, _)
+                            | (TableKind::KullaConty, _)
+                            | (TableKind::AlbedoFresnel, _)
+                            | (TableKind::ClassicAlbedo, _)
+                            | (TableKind::ClassicAlbedoAniso, _)
+                            | (TableKind::Vgroove, "n_dot_h")
+                    );
+                    if !zero_ok && ax.coord(0) <= 0.0 {
+                        return Err(format!(
+                            "{f}: a texel at cosine 0 is not allowed for a {} table (the quantity is undefined at 0: \
+                             it divides by {}); use the centers convention or a range starting above 0",
+                            kind.name(),
+                            if ax.name == "n_dot_h" { "n.h" } else { "n.v" }
+                        ));
+                    }
+                    if !zero_ok && ax.coord(0) < MIN_COSINE {
+                        return Err(format!(
+                            "{f}: texel 0 is at cosine {}, below the smallest accepted {} for {} tables (they divide by {}: \
+                             closer to grazing its angle's tangent passes 1e12, and in f64 the integrand overflows near 1e-154); \
+                             start the range at {} or above",
+                            crate::numfmt::num(ax.coord(0)),
+                            crate::numfmt::num(MIN_COSINE),
+                            kind.name(),
+                            if ax.name == "n_dot_h" { "n.h" } else { "n.v" },
+                            crate::numfmt::num(MIN_COSINE),
+                        ));
+                    }
+                }
+                Quantity::Fresnel(q) => {
+                    if ax.name != "fresnel" {
+                        return Err(format!(
+                            "{f}: only the fresnel axis takes a Fresnel quantity"
+                        ));
+                    }
+                    for i in 0..ax.size {
+                        q.check(ax.coord(i))
+                            .map_err(|e| format!("{f}: texel {i}: {e}"))?;
+                    }
+                }
+                Quantity::Anisotropy => {
+                    if ax.name != "anisotropy" || lo < 0.0 || hi > 1.0 {
+                        return Err(format!(
+                            "{f}.range must lie within [0, 1] (an anisotropy: 0 isotropic, 1 alpha_x/alpha_y = 10), got [{lo}, {hi}]", lo = crate::numfmt::num(lo), hi = crate::numfmt::num(hi)));
+                    }
+                }
+                Quantity::Roughness(q) => {
+                    if let Some(c) = &self.model.classic {
+                        super::classic::check_parameter_axis(c, q, ax, &f)?;
+                        continue;
+                    }
+                    let ndf = self.model.ndf;
+                    if let Some(n) = ndf {
+                        if !q.applies_to(n) {
+                            return Err(format!(
+                                "{f}.quantity {:?} does not apply to the {} NDF (accepted: {})",
+                                q.name(),
+                                n.name(),
+                                RoughnessQuantity::ALL
+                                    .iter()
+                                    .filter(|r| r.applies_to(n))
+                                    .map(|r| r.name())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ));
+                        }
+                    }
+                    for i in 0..ax.size {
+                        let x = ax.coord(i);
+                        let a = q.to_alpha(x);
+                        if !(a.is_finite() && a > 0.0) {
+                            return Err(format!(
+                                "{f}: texel {i} is at {} {x:e} (alpha {a:e}); every texel needs alpha > 0 \
+                                 (use the centers convention or a range starting above 0)",
+                                q.name()
+                            ));
+                        }
+                        if let Some(n) = ndf {
+                            Ndf::new(n, a).map_err(|e| format!("{f}: texel {i}: {e}"))?;
+                        }
+                    }
+                }
+            }
+        }
+        if texels > MAX_TEXELS {
+            return Err(format!(
+                "the table has {texels} texels; at most {MAX_TEXELS} are accepted"
+            ));
+        }
+        self.model
+            .fresnel
+            .validate()
+            .map_err(|e| format!("model.{e}"))?;
+        let w = self.model.diffuse_weight;
+        if !(w.is_finite() && (0.0..=1.0).contains(&w)) {
+            return Err(format!(
+                "model.diffuse must be a weight in [0, 1], got {w}",
+                w = crate::numfmt::num(w)
+            ));
+        }
+        if !(self.tolerance.is_finite()
+            && self.tolerance >= MIN_TOLERANCE
+            && self.tolerance <= MAX_TOLERANCE)
+        {
+            return Err(format!(
+                "tolerance must be in [1e-12, 1e-2], got {}",
+                crate::numfmt::num(self.tolerance)
+            ));
+        }
+        let m = &self.model;
+        if kind.is_classic() {
+            return super::classic::validate(self);
+        }
+        if m.classic.is_some() {
+            return Err(format!(
+                "model.classic applies to classic-albedo and classic-albedo-aniso tables only, not {}",
+                kind.name()
+            ));
+        }
+        let need_ndf = |what: &str| -> Result<NdfKind, String> {
+            m.ndf
+                .ok_or_else(|| format!("model.ndf is required for a {} table{what}", kind.name()))
+        };
+        let only_spec = |why: &str| -> Result<(), String> {
+            if m.diffuse_weight != 0.0 {
+                return Err(format!(
+                    "model.diffuse must be 0 for a {} table ({why})",
+                    kind.name()
+                ));
+            }
+            Ok(())
+        };
+        // Charlie is a sheen distribution, paired with the Ashikhmin visibility (Estevez &
+        // Kulla 2017; Neubelt & Pettineo 2013): it has no closed-form Smith Λ, and without
+        // masking its D/(4 n·v) albedo grows without bound at grazing views for narrow lobes
+        // (α = 1e-9, cos θv = 1e-6: ~10⁴), which no absolute tolerance reaches in bounded time
+        if m.ndf == Some(NdfKind::Charlie)
+            && !matches!(kind, TableKind::Ndf | TableKind::G1)
+            && m.masking != Masking::Ashikhmin
+        {
+            let what = if m.masking.is_smith() {
+                "smith".to_string()
+            } else {
+                format!("{:?}", m.masking.name())
+            };
+            return Err(format!(
+                "{what} masking of the charlie NDF is not supported: use masking ashikhmin (charlie is a sheen \
+                 distribution, defined with the ashikhmin visibility)"
+            ));
+        }
+        match kind {
+            TableKind::Ndf => {
+                need_ndf("")?;
+            }
+            TableKind::G1 => {
+                let n = need_ndf("")?;
+                if n == NdfKind::Charlie {
+                    return Err("a g1 table of the charlie NDF is not supported: sheen uses the ashikhmin visibility, not Smith masking".into());
+                }
+            }
+            TableKind::G2 => {
+                let n = need_ndf("")?;
+                if !(m.masking.is_smith() || m.masking == Masking::Ashikhmin) {
+                    return Err(format!(
+                        "model.masking {:?} is not a function of (cos theta_v, cos theta_l) alone; a g2 table accepts \
+                         smith-separable, smith-height-correlated or ashikhmin (for the V-groove term use the vgroove kind)",
+                        m.masking.name()
+                    ));
+                }
+                if m.masking.is_smith() && n == NdfKind::Charlie {
+                    return Err(
+                        "smith masking of the charlie NDF is not supported: use masking ashikhmin"
+                            .into(),
+                    );
+                }
+            }
+            TableKind::Vgroove => {
+                if m.masking != Masking::VGroove {
+                    return Err("a vgroove table needs model.masking \"v-groove\"".into());
+                }
+            }
+            TableKind::Albedo | TableKind::AlbedoAvg => {
+                if m.ndf.is_none() && m.diffuse_weight == 0.0 {
+                    return Err(format!(
+                        "a {} table needs a specular lobe (model.ndf) or a diffuse weight",
+                        kind.name()
+                    ));
+                }
+                if m.ndf == Some(NdfKind::Charlie) && m.masking.is_smith() {
+                    return Err(
+                        "smith masking of the charlie NDF is not supported: use masking ashikhmin"
+                            .into(),
+                    );
+                }
+            }
+            TableKind::Dfg => {
+                need_ndf("")?;
+                only_spec("the split sum weights the specular lobe only")?;
+                if m.fresnel != Fresnel::None {
+                    return Err(format!(
+                        "model.fresnel must be none for a dfg table: the split sum factors Schlick's Fresnel out \
+                         (E = F0*A + B), got {:?}",
+                        m.fresnel.name()
+                    ));
+                }
+                if self.dfg_layout.is_none() {
+                    return Err("a dfg table needs layout \"karis\" or \"filament\"".into());
+                }
+                if self.cloth && self.dfg_layout != Some(DfgLayout::Filament) {
+                    return Err("cloth is only available with layout \"filament\"".into());
+                }
+            }
+            TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+                super::energy::validate(self)?;
+            }
+            TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
+                unreachable!("validated above")
+            }
+        }
+        if kind != TableKind::Dfg && (self.dfg_layout.is_some() || self.cloth) {
+            return Err(format!(
+                "layout and cloth apply to dfg tables only, not {}",
+                kind.name()
+            ));
+        }
+        Ok(())
+    }
+}
