@@ -16,13 +16,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # The runner is an example, so cargo builds the dev-dependencies with it, and one of them
-# (libktx-rs-sys, the tests' KTX2 judge) builds Khronos' C sources with cmake: a failed first
-# build on a machine without cmake says so after cargo's own output.
-if ! cargo build --release --quiet --bin brdfbake --example bench; then
-    if ! command -v cmake >/dev/null 2>&1; then
-        echo "scripts/bench.sh: cmake not found; the benchmark runner is built with the test" \
-            "dependencies, and libktx-rs-sys needs cmake (Debian: apt-get install cmake)" >&2
-    fi
-    exit 1
-fi
+# (libktx-rs-sys, the tests' KTX2 judge) builds Khronos' C sources with cmake: the judges'
+# venv of scripts/test provides it (set up here if missing).
+eval "$(scripts/test --setup-only)"
+cargo build --release --quiet --bin brdfbake --example bench
 exec target/release/examples/bench --bin target/release/brdfbake "$@"

@@ -5,8 +5,11 @@
 //! Every bake runs with its working directory in a temporary directory, so the repository's
 //! `presets/` is not seen and the built-in presets are the ones looked up by name.
 
+#[path = "common/cli.rs"]
+mod cli_support;
+use cli_support::snapshot;
+
 use serde_json::Value;
-use std::collections::BTreeMap;
 use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -219,30 +222,6 @@ fn assert_fails(o: &Output, code: i32, expect: &[&str], what: &str) {
             "{what}: stderr does not contain {s:?}:\n{err}"
         );
     }
-}
-
-/// Every regular file under `dir` (relative path → bytes); empty if `dir` does not exist.
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
-        let Ok(rd) = fs::read_dir(dir) else { return };
-        for e in rd {
-            let p = e.unwrap().path();
-            let t = fs::symlink_metadata(&p).unwrap().file_type();
-            if t.is_dir() {
-                walk(root, &p, out);
-            } else {
-                let bytes = if t.is_file() {
-                    fs::read(&p).unwrap()
-                } else {
-                    Vec::new()
-                };
-                out.insert(p.strip_prefix(root).unwrap().to_path_buf(), bytes);
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
 }
 
 /// Asserts that no file (of any kind) exists under `dir`.

@@ -4,7 +4,7 @@
 //! `scripts/test` provisions (and then requires: tests/common/judges.rs).
 
 use brdfbake::encode::{decode_exr, Encoder, ExrEncoder};
-use brdfbake::lut::{Axis, Channel, Convention, Lut, Quantity};
+use brdfbake::lut::Lut;
 use brdfbake::table::Storage;
 use half::f16;
 use serde_json::Value;
@@ -14,46 +14,11 @@ use std::process::Command;
 
 #[path = "common/judges.rs"]
 mod judges;
+#[path = "common/luts.rs"]
+mod luts;
+use luts::lut;
 
 const READER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/support/read_exr.py");
-
-fn lut(sizes: &[usize], names: &[&str], f: impl Fn([usize; 3], usize) -> f32) -> Lut {
-    let axes: Vec<Axis> = sizes
-        .iter()
-        .enumerate()
-        .map(|(k, &size)| Axis {
-            name: format!("axis{k}"),
-            quantity: Quantity::Cosine,
-            size,
-            range: [0.0, 1.0],
-            convention: Convention::Centers,
-        })
-        .collect();
-    let dim = |k: usize| sizes.get(k).copied().unwrap_or(1);
-    let mut data = Vec::new();
-    for z in 0..dim(2) {
-        for y in 0..dim(1) {
-            for x in 0..dim(0) {
-                for c in 0..names.len() {
-                    data.push(f([x, y, z], c));
-                }
-            }
-        }
-    }
-    Lut {
-        axes,
-        channels: names
-            .iter()
-            .map(|n| Channel {
-                name: n.to_string(),
-                meaning: format!("test channel {n}"),
-            })
-            .collect(),
-        data,
-        error_estimate: vec![0.0; names.len()],
-        evaluations: 0,
-    }
-}
 
 fn attributes() -> Vec<(String, String)> {
     [

@@ -15,7 +15,7 @@
 
 use brdfbake::encode::ktx2::{Ktx2Encoder, WRITER};
 use brdfbake::encode::{EncodeError, Encoder};
-use brdfbake::lut::{Axis, Channel, Convention, Lut, Quantity};
+use brdfbake::lut::{Channel, Lut};
 use brdfbake::table::Storage;
 use half::f16;
 use libktx_rs_sys as sys;
@@ -24,41 +24,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::ptr;
 
+#[path = "common/luts.rs"]
+mod luts;
+
+/// A synthetic table of `channels` channels (named E, A, B, cloth).
 fn lut(sizes: &[usize], channels: usize, f: impl Fn([usize; 3], usize) -> f32) -> Lut {
-    let axes: Vec<Axis> = sizes
-        .iter()
-        .enumerate()
-        .map(|(k, &size)| Axis {
-            name: format!("axis{k}"),
-            quantity: Quantity::Cosine,
-            size,
-            range: [0.0, 1.0],
-            convention: Convention::Centers,
-        })
-        .collect();
-    let dim = |k: usize| sizes.get(k).copied().unwrap_or(1);
-    let mut data = Vec::new();
-    for z in 0..dim(2) {
-        for y in 0..dim(1) {
-            for x in 0..dim(0) {
-                for c in 0..channels {
-                    data.push(f([x, y, z], c));
-                }
-            }
-        }
-    }
-    Lut {
-        axes,
-        channels: (0..channels)
-            .map(|c| Channel {
-                name: ["E", "A", "B", "cloth"][c].to_string(),
-                meaning: format!("test channel {c}"),
-            })
-            .collect(),
-        data,
-        error_estimate: vec![0.0; channels],
-        evaluations: 0,
-    }
+    luts::lut(sizes, &["E", "A", "B", "cloth"][..channels], f)
 }
 
 /// Values that differ in every texel and channel, with signs, small and large magnitudes

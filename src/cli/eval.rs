@@ -152,15 +152,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         threads: 1,
         smaller: "nothing smaller exists",
     })?;
-    use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
-    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&a.tolerance) {
-        return Err(CliError::input(format!(
-            "--tolerance must be in [{}, {}], got {}",
-            crate::numfmt::num(MIN_TOLERANCE),
-            crate::numfmt::num(MAX_TOLERANCE),
-            crate::numfmt::num(a.tolerance)
-        )));
-    }
+    super::guards::check_tolerance(a.tolerance)?;
     let ndf: NdfKind = parse_named(
         "--ndf",
         a.ndf.as_deref().unwrap_or("ggx"),

@@ -67,3 +67,17 @@ pub fn stopped(what: &str, d: &Deadline) -> CliError {
         crate::numfmt::human_seconds(d.seconds)
     ))
 }
+
+/// `--tolerance` of a command that integrates: in the range a table's `tolerance` accepts.
+pub fn check_tolerance(t: f64) -> Result<(), CliError> {
+    use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
+    if (MIN_TOLERANCE..=MAX_TOLERANCE).contains(&t) {
+        return Ok(());
+    }
+    Err(CliError::input(format!(
+        "--tolerance must be in [{}, {}] (as a table's), got {}",
+        crate::numfmt::num(MIN_TOLERANCE),
+        crate::numfmt::num(MAX_TOLERANCE),
+        crate::numfmt::num(t)
+    )))
+}

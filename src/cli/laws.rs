@@ -428,15 +428,7 @@ fn text(m: &dyn Reflectance, r: &Reciprocity, e: &Energy) -> String {
 }
 
 pub fn run(a: LawsArgs) -> Result<(), CliError> {
-    use crate::table::spec::{MAX_TOLERANCE, MIN_TOLERANCE};
-    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&a.tolerance) {
-        return Err(CliError::input(format!(
-            "--tolerance must be in [{}, {}] (as a table's), got {}",
-            crate::numfmt::num(MIN_TOLERANCE),
-            crate::numfmt::num(MAX_TOLERANCE),
-            crate::numfmt::num(a.tolerance)
-        )));
-    }
+    super::guards::check_tolerance(a.tolerance)?;
     if let Some(n) = a.albedo_table {
         if !(1..=256).contains(&n) {
             return Err(CliError::input(format!(

@@ -55,12 +55,7 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
             a.albedo_size
         )));
     }
-    if !(a.tolerance.is_finite() && a.tolerance > 0.0 && a.tolerance <= 1e-2) {
-        return Err(CliError::input(format!(
-            "--tolerance must be in (0, 0.01], got {}",
-            a.tolerance
-        )));
-    }
+    super::guards::check_tolerance(a.tolerance)?;
     let mut ndfs: Vec<(&str, NdfKind, Masking)> = Vec::new();
     for part in a.fit.split(',').map(str::trim) {
         let n = FIT_MODELS.iter().find(|n| n.0 == part).ok_or_else(|| {
