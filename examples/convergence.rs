@@ -1,5 +1,5 @@
 //! Convergence study for BENCHMARKS.md: error against integrand evaluations for every
-//! integral kind, brdfbake's adaptive G7/K15 quadrature (a sweep of tolerances) against
+//! integral kind, brdfbake's quadrature (its tables' methods, a sweep of tolerances) against
 //! importance-sampled Monte Carlo on Hammersley points (unbiased and the biased ÷-valid
 //! variant), measured against the test suite's independent l-space reference integrator
 //! (`tests/common/reference.rs`, included here by path).

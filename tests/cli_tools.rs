@@ -666,7 +666,7 @@ fn report_is_self_contained_and_renders() {
         "EnvBRDFApprox",
         "energy loss 1 − E",
         "E_avg vs roughness",
-        "Convergence: adaptive Gauss–Kronrod vs Monte Carlo",
+        "Convergence: brdfbake's quadrature vs Monte Carlo",
     ] {
         assert!(html.contains(w), "{w}");
     }

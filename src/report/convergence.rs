@@ -90,7 +90,7 @@ impl Kind {
             Kind::SplitSum => "A = ∫ (1 − Fc) f cos, B = ∫ Fc f cos (max error of the two), same model and point; MC samples h ∝ D(h)(n·h)".to_string(),
             Kind::Cloth => format!("∫ D_Charlie V_Ashikhmin (n·l) dω_l, α = {ALPHA}, μ = {MU}; MC samples l uniformly (as cmgen does for cloth)"),
             Kind::AlbedoAvg => format!("E_avg = 2∫ E(μ) μ dμ, GGX + height-correlated Smith, α = {ALPHA}; MC: 3D Hammersley, μ ∝ 2μ, h ∝ D(h)(n·h)"),
-            Kind::G1Numeric => format!("G1(μ) of the Gaussian NDF (m = {GAUSS_M}), μ = {MU}; brdfbake: adaptive G7/K15 of the slope-space Λ integral; MC: μ / ∫(v·h)⁺ D dω_h with h from GGX(α = m)"),
+            Kind::G1Numeric => format!("G1(μ) of the Gaussian NDF (m = {GAUSS_M}), μ = {MU}; brdfbake: adaptive Gauss–Kronrod of the slope-space Λ integral; MC: μ / ∫(v·h)⁺ D dω_h with h from GGX(α = m)"),
         }
     }
 
@@ -239,7 +239,7 @@ pub fn monte_carlo(kind: Kind, n: u64) -> (Vec<f64>, Vec<f64>, u64) {
 /// One point of a convergence curve.
 #[derive(Clone, Debug)]
 pub struct Row {
-    /// "adaptive G7/K15", "MC Hammersley (÷ N)" or "MC Hammersley (÷ valid, biased)".
+    /// "brdfbake", "MC Hammersley (÷ N)" or "MC Hammersley (÷ valid, biased)".
     pub method: &'static str,
     /// The tolerance or the sample count.
     pub setting: String,
@@ -248,7 +248,9 @@ pub struct Row {
     pub error: f64,
 }
 
-pub const ADAPTIVE: &str = "adaptive G7/K15";
+/// brdfbake's own methods for the integral (the table path: kernels, the tensor rule, the
+/// adaptive integrator, as `table::methods` orders them).
+pub const ADAPTIVE: &str = "brdfbake";
 pub const MC_UNBIASED: &str = "MC Hammersley (÷ N)";
 pub const MC_BIASED: &str = "MC Hammersley (÷ valid, biased)";
 
@@ -463,9 +465,9 @@ pub const REPORT_COUNTS: [u64; 6] = [16, 64, 256, 1024, 4096, 16384];
 pub fn section(out: &mut String) {
     let _ = writeln!(
         out,
-        "<section><h2>Convergence: adaptive Gauss–Kronrod vs Monte Carlo</h2>\
+        "<section><h2>Convergence: brdfbake's quadrature vs Monte Carlo</h2>\
          <p>Error against integrand evaluations for each integral kind, at one point each: \
-         brdfbake's adaptive G7/K15 quadrature over a sweep of tolerances ({}), and \
+         brdfbake's quadrature (the methods its tables use) over a sweep of tolerances ({}), and \
          importance-sampled Monte Carlo on Hammersley points ({} samples), unbiased (÷ N) and \
          in the biased variant that divides by the number of valid samples (its error stops \
          falling). Errors below 1e-17 (or exactly 0) are drawn at 1e-17. Reference: brdfbake at tolerance {:.0e} (E_avg: {:.0e}, and its sweep stops at \
