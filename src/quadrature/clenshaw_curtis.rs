@@ -37,8 +37,8 @@ pub(crate) struct Rules {
     pub(crate) w: Vec<Vec<f64>>,
 }
 
-/// The Clenshaw–Curtis nodes and weights of every level (shared with
-/// [`dfg_kernel`](super::dfg_kernel)).
+/// The Clenshaw–Curtis nodes and weights of every level (shared by every nested rule and
+/// kernel that uses them).
 pub(crate) fn rules() -> &'static Rules {
     static R: OnceLock<Rules> = OnceLock::new();
     R.get_or_init(|| {
@@ -107,8 +107,8 @@ pub(crate) fn inner_sums<const N: usize>(vals: &[f64], scale: f64, ku: usize) ->
     out
 }
 
-/// The nested level driver of the fast paths (this file's generic one and the specialised
-/// kernels of [`dfg_kernel`](super::dfg_kernel)): starting from level [`MIN_LEVEL`] in both
+/// The nested level driver of the tensor rules (the hemisphere's fast path and the V-groove
+/// pieces): starting from level [`MIN_LEVEL`] in both
 /// dimensions, `fill(sc, evals, i, ku)` brings φ node `i`'s inner values to u level `ku`
 /// (counting new evaluations) and `inner(sc, i, ku)` returns its inner sums at u levels
 /// ku, ku − 1, ku − 2 (times the node's scale); the dimension with the larger estimated
@@ -201,9 +201,8 @@ pub(crate) fn refine<const N: usize, S>(
 /// The error estimate of nested rules' level k from its results `q` (level k), `q1` (k − 1)
 /// and `q2` (k − 2): `max(|q − q1|, |q1 − q2|²/max(|q|, tol))` — the last difference, but
 /// never below what the difference before predicts under quadratic convergence (see
-/// the comment in `run`; QUADPACK, Piessens et al. 1983, §2.2.1). Shared by the nested
-/// Clenshaw–Curtis rules of this module, [`sheen_l`](super::sheen_l) and
-/// [`sheen_wide`](super::sheen_wide).
+/// the comment in `refine`; QUADPACK, Piessens et al. 1983, §2.2.1). Shared by the nested
+/// Clenshaw–Curtis rules that use this module's levels.
 pub(crate) fn nested_error(q: f64, q1: f64, q2: f64, tol: f64) -> f64 {
     let d = |x: f64, y: f64| (x - y).abs();
     d(q, q1).max(d(q1, q2).powi(2) / q.abs().max(tol))

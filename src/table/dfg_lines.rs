@@ -31,10 +31,9 @@
 //!   the grid's rows by rows 4.1 M). Their albedo behaves like `exp(−c/α)` away from
 //!   grazing: one grid in ln α over every narrow row cost 20.6 M at 512².
 //!
-//! The cloth measurements above were made with the light-direction cloth kernels. Since
-//! the θh kernel ([`sheen_azimuth`](crate::kernels::sheen_azimuth)) took over, the cloth
-//! channel costs 0.87 M / 1.31 M evaluations in all (~10 / ~13 ms of one core at 128² /
-//! 512²) and its plan was left as it was.
+//! The cloth measurements above were made with earlier cloth kernels; with the θh kernel
+//! ([`sheen_azimuth`](crate::kernels::sheen_azimuth)) the cloth channel costs 0.87 M / 1.31 M
+//! evaluations in all (~10 / ~13 ms of one core at 128² / 512²), and its plan was kept.
 //!
 //! **Error.** A grid's texel estimate is its x-interpolation's (truncation, plus the
 //! Lebesgue constant times the largest column estimate at its nodes); a column's is its
@@ -78,8 +77,7 @@ const ROW_BREAK: f64 = 0.27;
 
 /// Below which, in x = √μ, the cloth channel of narrow lobes goes by columns (the strip):
 /// μ = 0.04. There their albedo changes on the scale of μ, and their quadratures are the
-/// costliest of a row (the light-direction kernel often gives up, and at a node's tighter
-/// tolerance the half-vector kernel too). Measured on filament-dfg's narrow rows at 128²
+/// costliest of a row. Measured on filament-dfg's narrow rows at 128²
 /// (cut as a break, nodes at tol/8): x = 0.1, 0.2 and 0.25 gave 937, 467 and 460
 /// evaluations per texel (778 texel by texel); as a break at 512², interpolating down to the
 /// first texel spent 46 M of 138 M evaluations on nodes near grazing.
