@@ -7,6 +7,8 @@
 //! - for every accepted α (the documented [MIN_ALPHA, MAX_ALPHA], narrowed per NDF) and every
 //!   direction: D ≥ 0 and finite, G1 and G2 in [0, 1].
 //!
+//! - any single changed byte of a sealed sidecar or of a file it lists is found by its digest.
+//!
 //! Case counts are kept small so the file runs in seconds (CI); failures print the
 //! minimized input.
 
@@ -294,6 +296,57 @@ proptest! {
                         "{:?} {:?} a={} G2={}", kind, m, a, g);
                 }
             }
+        }
+    }
+}
+
+/// A real table's outputs, baked once: (sidecar bytes, [(file name, bytes)]).
+fn baked_outputs() -> &'static (Vec<u8>, Vec<(String, Vec<u8>)>) {
+    static OUT: std::sync::OnceLock<(Vec<u8>, Vec<(String, Vec<u8>)>)> = std::sync::OnceLock::new();
+    OUT.get_or_init(|| {
+        let text = r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo",
+            "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+            "formats": ["exr", "ktx2", "h"],
+            "axes": {"cos_theta_v": {"size": 5}, "roughness": {"size": 3, "quantity": "alpha"}}}]}"#;
+        let p = preset::parse(text, "p.json", "p").unwrap();
+        let (_, files) = brdfbake::pipeline::bake_preset(&p, std::path::Path::new("out"), None).unwrap();
+        let mut sidecar = Vec::new();
+        let mut others = Vec::new();
+        for (path, bytes) in files {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.ends_with(".json") {
+                sidecar = bytes;
+            } else {
+                others.push((name, bytes));
+            }
+        }
+        (sidecar, others)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    /// Any single changed byte of a sealed sidecar breaks its seal (`bake --check`,
+    /// `inspect`, `probe` and `verify` refuse it), and any changed byte of a file it lists
+    /// breaks that file's digest.
+    #[test]
+    fn any_changed_byte_is_found(pos in any::<prop::sample::Index>(), x in 1u8..=255, which in 0usize..4) {
+        let (sidecar, files) = baked_outputs();
+        prop_assert_eq!(brdfbake::digest::check_seal(sidecar), Ok(()));
+        let v: Value = serde_json::from_slice(sidecar).unwrap();
+        if which == 0 {
+            let mut bad = sidecar.clone();
+            let i = pos.index(bad.len());
+            bad[i] ^= x;
+            prop_assert!(brdfbake::digest::check_seal(&bad).is_err(), "byte {} ^ {:#x}", i, x);
+        } else {
+            let (name, bytes) = &files[(which - 1) % files.len()];
+            prop_assert_eq!(brdfbake::digest::check_file(&v, name, bytes), Ok(()));
+            let mut bad = bytes.clone();
+            let i = pos.index(bad.len());
+            bad[i] ^= x;
+            prop_assert!(brdfbake::digest::check_file(&v, name, &bad).is_err(), "{} byte {} ^ {:#x}", name, i, x);
         }
     }
 }
