@@ -300,9 +300,12 @@ proptest! {
     }
 }
 
-/// A real table's outputs, baked once: (sidecar bytes, [(file name, bytes)]).
-fn baked_outputs() -> &'static (Vec<u8>, Vec<(String, Vec<u8>)>) {
-    static OUT: std::sync::OnceLock<(Vec<u8>, Vec<(String, Vec<u8>)>)> = std::sync::OnceLock::new();
+/// A table's sidecar bytes and its other files (name, bytes).
+type Outputs = (Vec<u8>, Vec<(String, Vec<u8>)>);
+
+/// A real table's outputs, baked once.
+fn baked_outputs() -> &'static Outputs {
+    static OUT: std::sync::OnceLock<Outputs> = std::sync::OnceLock::new();
     OUT.get_or_init(|| {
         let text = r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo",
             "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
