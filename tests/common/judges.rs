@@ -48,3 +48,21 @@ pub fn openexr() -> bool {
         "python3 -m pip install openexr numpy",
     )
 }
+
+/// Khronos' glslang reference compiler (GLSL ES, desktop and Vulkan GLSL, and HLSL).
+pub fn glslang() -> bool {
+    available(
+        "glslangValidator",
+        &["glslangValidator", "--version"],
+        "apt-get install glslang-tools",
+    )
+}
+
+/// The SPIR-V validator of SPIRV-Tools.
+pub fn spirv_val() -> bool {
+    available(
+        "spirv-val",
+        &["spirv-val", "--version"],
+        "apt-get install spirv-tools",
+    )
+}
