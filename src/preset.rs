@@ -124,6 +124,19 @@ pub struct PresetTable {
     pub accept_error_estimate: Option<f64>,
 }
 
+impl PresetTable {
+    /// How many of the table's axes (the first ones) a texture unit filters: all of them,
+    /// but the slices of a 3D table stored as a 2D array, which its shader blends itself.
+    pub fn hardware_filtered_axes(&self) -> usize {
+        let n = self.spec.axes.len();
+        if n == 3 && self.layout_3d == Layout3d::Array {
+            2
+        } else {
+            n
+        }
+    }
+}
+
 /// Why a preset was rejected.
 #[derive(Debug, thiserror::Error)]
 pub enum PresetError {
