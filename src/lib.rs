@@ -31,6 +31,7 @@
 pub mod cli;
 pub mod digest;
 pub mod encode;
+pub mod engine;
 pub mod input;
 pub mod integrate;
 pub mod laws;

@@ -47,6 +47,9 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(a) = table.accept_error_estimate {
         v["accept_error_estimate"] = json!(a);
     }
+    if let Some(e) = table.engine {
+        v["engine"] = json!(e.name());
+    }
     v
 }
 
@@ -354,7 +357,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "the preset accepts per-texel error estimates up to this value, above its tolerance; estimated_max_error is at most this"
         );
     }
-    json!({
+    let mut v = json!({
         "schema": SCHEMA,
         "generator": {"name": "brdfbake", "version": VERSION},
         "input_hash": input_hash(table),
@@ -387,7 +390,16 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         "quadrature": quadrature,
         "lookup_error": lookup_error(table, lut),
         "files": files.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
-    })
+    });
+    // (only when set: tables without an engine keep their sidecars)
+    if let Some(e) = table.engine {
+        v["engine"] = json!({
+            "name": e.name(),
+            "warnings": crate::engine::warnings(table),
+            "guide": "docs/engines.md",
+        });
+    }
+    v
 }
 
 /// The `lookup_error` sidecar field: per channel, how far a filtered lookup between texel

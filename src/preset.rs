@@ -122,6 +122,9 @@ pub struct PresetTable {
     /// more than its tolerance (`accept_error_estimate`; recorded in the sidecar). `None`:
     /// a texel whose estimate exceeds the tolerance fails the bake.
     pub accept_error_estimate: Option<f64>,
+    /// The engine the table is baked for (`engine`; recorded in the sidecar and, when set,
+    /// the input hash): `bake` warns about what does not work there ([`crate::engine`]).
+    pub engine: Option<crate::engine::Engine>,
 }
 
 impl PresetTable {
@@ -188,6 +191,8 @@ struct RawTable {
     layout_3d: Option<Layout3d>,
     #[serde(default)]
     accept_error_estimate: Option<f64>,
+    #[serde(default)]
+    engine: Option<crate::engine::Engine>,
 }
 
 #[derive(Deserialize)]
@@ -316,6 +321,20 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
     let raw: RawPreset = serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.into_inner();
+        // the text parsed as JSON above: a "syntax" error here is serde_json's report of a
+        // value of the wrong type where a name is expected (`"layout_3d": 1`)
+        if inner.is_syntax() && path != "." {
+            return PresetError::Field {
+                source_name: source_name.into(),
+                msg: format!(
+                    "must be one of the accepted names (a string, see docs/presets.md), got {} (line {}, column {})",
+                    value_at(&value, &path).map_or("another type", kind_of),
+                    inner.line(),
+                    inner.column()
+                ),
+                path,
+            };
+        }
         if inner.is_syntax() || inner.is_eof() || path == "." {
             PresetError::Syntax {
                 source_name: source_name.into(),
@@ -439,6 +458,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             scale,
             layout_3d: t.layout_3d.unwrap_or(Layout3d::Volume),
             accept_error_estimate: t.accept_error_estimate,
+            engine: t.engine,
         });
     }
     Ok(Preset {
@@ -536,6 +556,24 @@ fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
         }
     }
     Ok(())
+}
+
+/// The value at a path such as `tables[0].engine` (serde_path_to_error's form).
+fn value_at<'a>(v: &'a serde_json::Value, path: &str) -> Option<&'a serde_json::Value> {
+    let mut v = v;
+    for part in path.split('.') {
+        let (key, index) = match part.split_once('[') {
+            Some((k, i)) => (k, Some(i.trim_end_matches(']').parse::<usize>().ok()?)),
+            None => (part, None),
+        };
+        if !key.is_empty() {
+            v = v.get(key)?;
+        }
+        if let Some(i) = index {
+            v = v.get(i)?;
+        }
+    }
+    Some(v)
 }
 
 fn kind_of(v: &serde_json::Value) -> &'static str {
