@@ -219,6 +219,40 @@ impl Lut {
         out
     }
 
+    /// Per channel: a bound of the error of linear interpolation between texel centres: the
+    /// largest difference between the largest and the smallest texel at the corners of one
+    /// cell. It holds wherever the function is monotone along each axis inside each cell (no
+    /// peak or dip strictly between texel centres): then along every axis the function lies
+    /// between its values at the cell's faces, so inside the cell it lies within the range of
+    /// the corner texels, and so does the interpolant (a convex combination of them).
+    pub fn interpolation_bound(&self) -> Vec<f64> {
+        let nc = self.channels.len();
+        let dims = [self.dim(0), self.dim(1), self.dim(2)];
+        let d = self.axes.len();
+        let mut out = vec![0.0f64; nc];
+        for idx in texel_indices(dims) {
+            if (0..d).any(|k| dims[k] >= 2 && idx[k] + 1 >= dims[k]) {
+                continue;
+            }
+            for (c, o) in out.iter_mut().enumerate() {
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for corner in 0..(1usize << d) {
+                    let mut j = idx;
+                    for (k, jk) in j.iter_mut().enumerate().take(d) {
+                        if (corner >> k) & 1 == 1 && dims[k] >= 2 {
+                            *jk += 1;
+                        }
+                    }
+                    let v = self.texel(j, c) as f64;
+                    lo = lo.min(v);
+                    hi = hi.max(v);
+                }
+                *o = o.max(hi - lo);
+            }
+        }
+        out
+    }
+
     /// Per channel: the largest |difference| between neighbouring texels along axis `k`.
     pub fn max_steps(&self, k: usize) -> Vec<f64> {
         let nc = self.channels.len();

@@ -409,7 +409,8 @@ pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
     let spec = &table.spec;
     let hw_axes = table.hardware_filtered_axes();
     let unscale = |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| x / table.scale).collect() };
-    let interpolation = unscale(lut.interpolation_error_estimate());
+    let estimate = unscale(lut.interpolation_error_estimate());
+    let interpolation = unscale(lut.interpolation_bound());
     let weights = unscale(lut.weight_rounding_bound(hw_axes));
     let relative = match spec.storage {
         Storage::F32 => 2f64.powi(-24),
@@ -443,11 +444,13 @@ pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
         .map(|a| a.name.as_str())
         .collect();
     json!({
-        "meaning": "per channel, the largest difference between a linearly filtered lookup inside the hull of the texel centres and the exact function: ideal_filtering with exact weights (CPUs, software rasterizers, brdfbake probe), hardware_filtering with weights rounded to multiples of 1/256 (GPUs with 8-bit sub-texel precision, brdfbake probe --filter hardware); beyond the edge texel centres a lookup returns the edge texels (clamp-to-edge)",
+        "meaning": "per channel, the worst-case difference between a linearly filtered lookup inside the hull of the texel centres and the exact function: ideal_filtering with exact weights (CPUs, software rasterizers, brdfbake probe) = interpolation_bound + texel_error, hardware_filtering with weights rounded to multiples of 1/256 (GPUs with 8-bit sub-texel precision, brdfbake probe --filter hardware) = that + weight_rounding_bound; beyond the edge texel centres a lookup returns the edge texels (clamp-to-edge)",
         "ideal_filtering": per_channel(&|c| interpolation[c] + texel[c]),
         "hardware_filtering": per_channel(&|c| interpolation[c] + texel[c] + weights[c]),
-        "interpolation_estimate": per_channel(&|c| interpolation[c]),
-        "interpolation_estimate_meaning": "max over texels of the sum over axes of |second difference of the texels along the axis| / 8: the linear-interpolation remainder h^2 |f''| / 8 at a cell's middle with h^2 f'' estimated from the texels (exact for data quadratic along each axis; brdfbake verify measures the error at cell middles)",
+        "interpolation_bound": per_channel(&|c| interpolation[c]),
+        "interpolation_bound_meaning": "max over cells of (largest - smallest texel at the cell's corners): inside a cell where the function is monotone along each axis (no peak or dip strictly between texel centres) both the function and the interpolant lie within that range (brdfbake verify measures the error at cell middles and says where it is exceeded)",
+        "interpolation_estimate": per_channel(&|c| estimate[c]),
+        "interpolation_estimate_meaning": "the typical error where the table is smooth at its resolution: max over texels of the sum over axes of |second difference of the texels along the axis| / 8, the linear-interpolation remainder h^2 |f''| / 8 at a cell's middle with h^2 f'' from the texels (exact for data quadratic along each axis)",
         "texel_error": per_channel(&|c| texel[c]),
         "texel_error_meaning": "quadrature.estimated_max_error plus the storage rounding of the largest |value|",
         "weight_rounding_bound": per_channel(&|c| weights[c]),

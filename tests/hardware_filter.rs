@@ -192,6 +192,17 @@ fn probe_reads_what_8_bit_weights_read() {
             lut.interpolation_error_estimate()[c],
             "the sidecar's estimate is the texels' own"
         );
+        let ideal = le["ideal_filtering"][name].as_f64().unwrap();
+        let texel = le["texel_error"][name].as_f64().unwrap();
+        assert_eq!(ideal, lut.interpolation_bound()[c] + texel);
+        // the bound is the largest corner range of a cell: at most the sum of the axes'
+        // largest steps, and at least the largest step
+        let steps: Vec<f64> = (0..2).map(|k| lut.max_steps(k)[c]).collect();
+        let b = lut.interpolation_bound()[c];
+        assert!(
+            b <= steps[0] + steps[1] && b >= steps[0].max(steps[1]),
+            "{b} {steps:?}"
+        );
     }
 }
 
@@ -318,6 +329,8 @@ fn verify_measures_lookups_between_texels() {
             ch["hardware_filtering_max_error"].as_f64().unwrap(),
             e + bound
         );
+        // a smooth, monotone table: the measured error is within the sidecar's worst case
+        assert_eq!(ch["within_sidecar_worst_case"], true, "{ch}");
     }
     let text = cli::run(d, &["verify", "out/hw/dfg.ktx2"]);
     let out = String::from_utf8_lossy(&text.stdout);

@@ -234,7 +234,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         )));
     }
     let threads = rayon::current_num_threads();
-    let mut jobs: Vec<(String, crate::preset::PresetTable, Lut, f64)> = Vec::new();
+    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
+    // a table baked here)
+    let mut jobs: Vec<(
+        String,
+        crate::preset::PresetTable,
+        Lut,
+        f64,
+        serde_json::Value,
+    )> = Vec::new();
     let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
     if let Some(sc) = schema.as_deref() {
@@ -296,7 +304,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         )
         .map_err(CliError::input)?;
         deadline = Some(d);
-        jobs.push((a.target.clone(), table, lut, rb.scale));
+        // (a texture read back has no error estimates: the sidecar's statement is the one)
+        let stated = rb
+            .sidecar
+            .as_ref()
+            .and_then(|s| s.get("lookup_error").cloned())
+            .unwrap_or_else(|| crate::meta::lookup_error(&table, &lut));
+        jobs.push((a.target.clone(), table, lut, rb.scale, stated));
     } else {
         // a .json without a sidecar's schema is read as a preset; say so when that fails,
         // so that a damaged sidecar is not reported only in a preset's terms
@@ -338,18 +352,25 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 };
                 let lut = crate::table::bake_with(&t.spec, &opts)
                     .map_err(|e| super::bake_error(&preset.name, e))?;
+                // (baked here, the texels are the values: no scale applied)
+                let values = crate::preset::PresetTable {
+                    scale: 1.0,
+                    ..t.clone()
+                };
+                let stated = crate::meta::lookup_error(&values, &lut);
                 jobs.push((
                     format!("{}/{}", preset.name, t.spec.name),
                     t.clone(),
                     lut,
                     1.0,
+                    stated,
                 ));
             }
         }
     }
     let mut failed = Vec::new();
     let mut docs = Vec::new();
-    for (label, table, lut, scale) in &jobs {
+    for (label, table, lut, scale, sidecar) in &jobs {
         let spec = &table.spec;
         let texels = if a.all {
             all_texels(lut)
@@ -363,7 +384,6 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         let (cells, lookups) = verify_lookups(spec, lut, *scale, &texels, deadline.as_ref())
             .map_err(CliError::input)?
             .ok_or_else(stopped)?;
-        let sidecar = crate::meta::lookup_error(table, lut);
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;
         if !a.json {
             outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
@@ -399,13 +419,16 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             let name = &lut.channels[c].name;
             let num = |k: &str| sidecar[k][name.as_str()].as_f64().unwrap_or(f64::NAN);
             let (estimate, bound) = (num("interpolation_estimate"), num("weight_rounding_bound"));
+            let worst = num("ideal_filtering");
+            let within = *e <= worst;
             if !a.json {
                 outln!(
-                    "  {name:<12} max error {e:.3e} at {at:?} (lookup {got:.12}, exact {exact:.12}); hardware up to {:.3e}; sidecar estimate {estimate:.3e} + weights {bound:.3e}",
-                    e + bound
+                    "  {name:<12} max error {e:.3e} at {at:?} (lookup {got:.12}, exact {exact:.12}); hardware up to {:.3e}; sidecar: worst case {worst:.3e} ({}), smooth-table estimate {estimate:.3e}, 8-bit weights {bound:.3e}",
+                    e + bound,
+                    if within { "holds" } else { "EXCEEDED: the function has a peak or dip between texel centres there" }
                 );
             }
-            lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_interpolation_estimate": estimate}));
+            lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_ideal_filtering": worst, "within_sidecar_worst_case": within, "sidecar_interpolation_estimate": estimate}));
         }
         docs.push(json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}}));
     }
