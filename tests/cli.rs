@@ -1052,7 +1052,12 @@ const FIXTURES: &[(&str, i32, &[&str])] = &[
     (
         "engine-unknown.json",
         INPUT,
-        &["tables[0].engine", "unknown variant `three`", "threejs", "blender"],
+        &[
+            "tables[0].engine",
+            "unknown variant `three`",
+            "threejs",
+            "blender",
+        ],
     ),
     (
         "engine-number.json",

@@ -38,7 +38,10 @@ fn table(extra: &str, axes: &str, kind: &str) -> PresetTable {
 fn engine_is_validated_like_every_field() {
     for (value, expect) in [
         (r#""three""#, "unknown variant `three`"),
-        (r#"1"#, "accepted names (a string, see docs/presets.md), got a number"),
+        (
+            r#"1"#,
+            "accepted names (a string, see docs/presets.md), got a number",
+        ),
         (r#""""#, "unknown variant"),
     ] {
         let text = preset(&format!(r#", "engine": {value}"#), DFG_AXES, "dfg");

@@ -661,6 +661,11 @@ fn run_browser(site: Arc<Site>) -> (Results, String) {
     (results, log)
 }
 
+/// |difference| ≤ bound (false for NaN).
+fn within(difference: f64, bound: f64) -> bool {
+    difference.abs() <= bound
+}
+
 /// The comparisons of one case's values; the messages of those that fail, and how many
 /// were made.
 fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
@@ -694,7 +699,7 @@ fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
             let (w, tol) = (want[ch] / t.scale, tol[ch] / t.scale);
             made += 1;
             worst = worst.max((gpu - w).abs() / tol);
-            if !((gpu - w).abs() <= tol) {
+            if !within(gpu - w, tol) {
                 fails.push(format!(
                     "{what} at {}, channel {}: GPU {gpu} vs probe's lookup {w}: |difference| {:.3e} > f32 bound {tol:.3e}",
                     at(x),
@@ -720,7 +725,7 @@ fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
                 gpu_probe[ch]
             );
             made += 1;
-            if !((gpu - gpu_probe[ch]).abs() <= tol) {
+            if !within(gpu - gpu_probe[ch], tol) {
                 fails.push(format!(
                     "{what} at {}, channel {}: GPU {gpu} vs brdfbake probe {}: |difference| {:.3e} > f32 bound {tol:.3e}",
                     at(x),
@@ -732,7 +737,7 @@ fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
             if let Some(exact) = exact {
                 let bound = interp[ch] / t.scale + t.texel_error[ch] + tol;
                 made += 1;
-                if !((gpu - exact[ch]).abs() <= bound) {
+                if !within(gpu - exact[ch], bound) {
                     fails.push(format!(
                         "{what} at {}, channel {}: GPU {gpu} vs exact {}: |difference| {:.3e} > interpolation bound {bound:.3e}",
                         at(x),
@@ -816,14 +821,14 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
         );
     }
     let mut cases: Vec<Case> = Vec::new();
-    let mut add = |files: &mut HashMap<String, (Vec<u8>, &'static str)>,
-                   cases: &mut Vec<Case>,
-                   ti: usize,
-                   api: &'static str,
-                   ktx2: Option<Vec<u8>>,
-                   snippet: Option<String>,
-                   float32_filterable: bool,
-                   expect: Expect| {
+    let add = |files: &mut HashMap<String, (Vec<u8>, &'static str)>,
+               cases: &mut Vec<Case>,
+               ti: usize,
+               api: &'static str,
+               ktx2: Option<Vec<u8>>,
+               snippet: Option<String>,
+               float32_filterable: bool,
+               expect: Expect| {
         let t = &tables[ti];
         let id = cases.len();
         let url = format!("/files/{id}.ktx2");
@@ -859,8 +864,8 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             expect,
         });
     };
-    for ti in 0..tables.len() {
-        let f16 = tables[ti].label.ends_with("(f16)");
+    for (ti, t) in tables.iter().enumerate() {
+        let f16 = t.label.ends_with("(f16)");
         if !f16 {
             add(
                 &mut files,
@@ -1093,7 +1098,10 @@ fn engines_doc_quotes_the_tested_code() {
     }
     assert_eq!(regions, 4);
     let blocks: Vec<&str> = doc.split("```").collect();
-    assert!(blocks.len() % 2 == 1, "unbalanced code fences in docs/engines.md");
+    assert!(
+        blocks.len() % 2 == 1,
+        "unbalanced code fences in docs/engines.md"
+    );
     for block in blocks.iter().skip(1).step_by(2) {
         let code = block.split_once('\n').map_or("", |(_, c)| c);
         assert!(

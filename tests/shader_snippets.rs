@@ -190,10 +190,13 @@ fn axis_args(lut: &Lut) -> String {
         .join(", ")
 }
 
+/// Header attributes of a snippet.
+type Attributes = Vec<(String, String)>;
+
 /// The tables the naga checks run on, with the attribute sets of their snippets: the test
 /// tables with none, the test attributes and a scale; every default preset's table with its
 /// own header attributes.
-fn naga_cases(scale: &str) -> Vec<(String, Lut, Vec<Vec<(String, String)>>)> {
+fn naga_cases(scale: &str) -> Vec<(String, Lut, Vec<Attributes>)> {
     let mut v: Vec<_> = tables()
         .into_iter()
         .map(|(name, lut)| {
