@@ -6,7 +6,7 @@
 //! | language | wrapper | compiler |
 //! |---|---|---|
 //! | GLSL ES 3.00 (WebGL2) | fragment and vertex shader, no `precision` statement | glslangValidator |
-//! | GLSL 3.30, 4.10, 4.50 core (OpenGL) | fragment shader | glslangValidator |
+//! | GLSL 3.30, 4.10, 4.50, 4.60 core (OpenGL) | fragment shader | glslangValidator |
 //! | Vulkan GLSL 4.50 | fragment shader, combined image samplers at set 0 | glslangValidator -V, then spirv-val |
 //! | HLSL (Shader Model 5 style) | pixel shader `main` | glslangValidator's HLSL front end (-D -V), then spirv-val |
 //! | WGSL | (tests/shader_snippets.rs) | naga, parse and full validation |
@@ -274,6 +274,7 @@ fn glsl_snippets_compile_in_every_glsl_dialect() {
             ("c330.frag", "#version 330 core", "core-frag"),
             ("c410.frag", "#version 410 core", "core-frag"),
             ("c450.frag", "#version 450 core", "core-frag"),
+            ("c460.frag", "#version 460 core", "core-frag"),
             ("vk.frag", "#version 450", "vulkan-frag"),
         ];
         for (file, version, dialect) in runs {
@@ -297,8 +298,8 @@ fn glsl_snippets_compile_in_every_glsl_dialect() {
         failures.len(),
         failures.join("\n\n")
     );
-    // every default table and the test tables, six dialects each
-    assert!(compiled >= 6 * 24, "{compiled}");
+    // every default table and the test tables, seven dialects each
+    assert!(compiled >= 7 * 24, "{compiled}");
 }
 
 #[test]
