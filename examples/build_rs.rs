@@ -97,6 +97,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         scale: 1.0,
         layout_3d: Layout3d::Volume,
         accept_error_estimate: None,
+        engine: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");

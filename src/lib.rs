@@ -33,6 +33,7 @@ pub mod cli;
 pub mod deadline;
 pub mod digest;
 pub mod encode;
+pub mod engine;
 pub mod hemisphere;
 pub mod input;
 pub mod kernels;

@@ -49,6 +49,9 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(a) = table.accept_error_estimate {
         v["accept_error_estimate"] = json!(a);
     }
+    if let Some(e) = table.engine {
+        v["engine"] = json!(e.name());
+    }
     v
 }
 
@@ -244,7 +247,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "the preset accepts per-texel error estimates up to this value, above its tolerance; estimated_max_error is at most this"
         );
     }
-    json!({
+    let mut v = json!({
         "schema": SCHEMA,
         "generator": {"name": "brdfbake", "version": VERSION},
         "input_hash": input_hash(table),
@@ -275,7 +278,74 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             },
         },
         "quadrature": quadrature,
+        "lookup_error": lookup_error(table, lut),
         "files": files.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+    });
+    // (only when set: tables without an engine keep their sidecars)
+    if let Some(e) = table.engine {
+        v["engine"] = json!({
+            "name": e.name(),
+            "warnings": crate::engine::warnings(table),
+            "guide": "docs/engines.md",
+        });
+    }
+    v
+}
+
+/// The `lookup_error` sidecar field: per channel, how far a filtered lookup between texel
+/// centres lies from the exact function, with ideal (exact) weights and with the 8-bit
+/// weights of hardware filtering. `lut` holds the stored texels (value × scale).
+pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
+    let spec = &table.spec;
+    let hw_axes = table.hardware_filtered_axes();
+    let unscale = |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| x / table.scale).collect() };
+    let estimate = unscale(lut.interpolation_error_estimate());
+    let interpolation = unscale(lut.interpolation_bound());
+    let weights = unscale(lut.weight_rounding_bound(hw_axes));
+    let relative = match spec.storage {
+        Storage::F32 => 2f64.powi(-24),
+        Storage::F16 => 2f64.powi(-11),
+    };
+    let nc = lut.channels.len();
+    let max_abs: Vec<f64> = (0..nc)
+        .map(|c| {
+            lut.data
+                .iter()
+                .skip(c)
+                .step_by(nc.max(1))
+                .fold(0.0f64, |m, v| m.max((*v as f64).abs()))
+                / table.scale
+        })
+        .collect();
+    let texel: Vec<f64> = (0..nc)
+        .map(|c| lut.error_estimate.get(c).copied().unwrap_or(0.0) + relative * max_abs[c])
+        .collect();
+    let per_channel = |v: &dyn Fn(usize) -> f64| -> Value {
+        Value::Object(
+            lut.channels
+                .iter()
+                .enumerate()
+                .map(|(c, ch)| (ch.name.clone(), json!(v(c))))
+                .collect(),
+        )
+    };
+    let filtered: Vec<&str> = lut.axes[..hw_axes]
+        .iter()
+        .map(|a| a.name.as_str())
+        .collect();
+    json!({
+        "meaning": "per channel, the worst-case difference between a linearly filtered lookup inside the hull of the texel centres and the exact function: ideal_filtering with exact weights (CPUs, software rasterizers, brdfbake probe) = interpolation_bound + texel_error, hardware_filtering with weights rounded to multiples of 1/256 (GPUs with 8-bit sub-texel precision, brdfbake probe --filter hardware) = that + weight_rounding_bound; beyond the edge texel centres a lookup returns the edge texels (clamp-to-edge)",
+        "ideal_filtering": per_channel(&|c| interpolation[c] + texel[c]),
+        "hardware_filtering": per_channel(&|c| interpolation[c] + texel[c] + weights[c]),
+        "interpolation_bound": per_channel(&|c| interpolation[c]),
+        "interpolation_bound_meaning": "max over cells of (largest - smallest texel at the cell's corners): inside a cell where the function is monotone along each axis (no peak or dip strictly between texel centres) both the function and the interpolant lie within that range (brdfbake verify measures the error at cell middles and says where it is exceeded)",
+        "interpolation_estimate": per_channel(&|c| estimate[c]),
+        "interpolation_estimate_meaning": "the typical error where the table is smooth at its resolution: max over texels of the sum over axes of |second difference of the texels along the axis| / 8, the linear-interpolation remainder h^2 |f''| / 8 at a cell's middle with h^2 f'' from the texels (exact for data quadratic along each axis)",
+        "texel_error": per_channel(&|c| texel[c]),
+        "texel_error_meaning": "quadrature.estimated_max_error plus the storage rounding of the largest |value|",
+        "weight_rounding_bound": per_channel(&|c| weights[c]),
+        "weight_rounding_bound_meaning": "sum over the hardware-filtered axes of the largest step between neighbouring texels / 512: the most rounding the weights to 1/256 (by at most 1/512 each) moves a lookup, the interpolant being affine in each weight with a slope of at most the cell's step",
+        "hardware_filtered_axes": filtered,
     })
 }
 

@@ -149,7 +149,13 @@ pub fn bake_preset_until(
         let attrs = meta::header_attributes(&preset.name, t, &lut);
         let mut names = Vec::new();
         let mut encoded_files = Vec::new();
-        for f in formats.unwrap_or(&t.formats) {
+        // the table as written: with `bake --format`'s formats (the sidecar's engine warnings
+        // speak of those)
+        let written = PresetTable {
+            formats: formats.unwrap_or(&t.formats).to_vec(),
+            ..t.clone()
+        };
+        for f in &written.formats {
             let encoded = encode(*f, t, &lut, &attrs)
                 .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
             for (suffix, bytes) in encoded {
@@ -158,7 +164,7 @@ pub fn bake_preset_until(
                 encoded_files.push((file, bytes));
             }
         }
-        let json = meta::metadata(&preset.name, t, &lut, &names);
+        let json = meta::metadata(&preset.name, &written, &lut, &names);
         // the sidecar lists every file's digest and seals itself (crate::digest)
         let listed: Vec<(&str, &[u8])> = encoded_files
             .iter()

@@ -91,6 +91,54 @@ impl Format {
     }
 }
 
+/// An engine or API a table is baked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Engine {
+    /// three.js (WebGL2), loading the KTX2 with `KTX2Loader`.
+    Threejs,
+    /// WebGPU (browsers; the raw API).
+    Webgpu,
+    /// Bevy (wgpu), loading the KTX2 with its image loader.
+    Bevy,
+    /// Unreal Engine (imports the EXR).
+    Unreal,
+    /// Unity (imports the EXR, or loads the KTX2 texels in a script).
+    Unity,
+    /// Godot 4 (loads the KTX2 with its `ktx` module).
+    Godot,
+    /// Filament (uploads the texels with `Texture::setImage`).
+    Filament,
+    /// Blender (Image Texture node, EXR).
+    Blender,
+}
+
+impl Engine {
+    pub const ALL: [Engine; 8] = [
+        Engine::Threejs,
+        Engine::Webgpu,
+        Engine::Bevy,
+        Engine::Unreal,
+        Engine::Unity,
+        Engine::Godot,
+        Engine::Filament,
+        Engine::Blender,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Threejs => "threejs",
+            Engine::Webgpu => "webgpu",
+            Engine::Bevy => "bevy",
+            Engine::Unreal => "unreal",
+            Engine::Unity => "unity",
+            Engine::Godot => "godot",
+            Engine::Filament => "filament",
+            Engine::Blender => "blender",
+        }
+    }
+}
+
 /// How a 3D table is stored in a KTX2 file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -122,6 +170,22 @@ pub struct PresetTable {
     /// more than its tolerance (`accept_error_estimate`; recorded in the sidecar). `None`:
     /// a texel whose estimate exceeds the tolerance fails the bake.
     pub accept_error_estimate: Option<f64>,
+    /// The engine the table is baked for (`engine`; recorded in the sidecar and, when set,
+    /// the input hash): `bake` warns about what does not work there ([`crate::engine`]).
+    pub engine: Option<Engine>,
+}
+
+impl PresetTable {
+    /// How many of the table's axes (the first ones) a texture unit filters: all of them,
+    /// but the slices of a 3D table stored as a 2D array, which its shader blends itself.
+    pub fn hardware_filtered_axes(&self) -> usize {
+        let n = self.spec.axes.len();
+        if n == 3 && self.layout_3d == Layout3d::Array {
+            2
+        } else {
+            n
+        }
+    }
 }
 
 /// Why a preset was rejected.
@@ -175,6 +239,8 @@ struct RawTable {
     layout_3d: Option<Layout3d>,
     #[serde(default)]
     accept_error_estimate: Option<f64>,
+    #[serde(default)]
+    engine: Option<Engine>,
 }
 
 #[derive(Deserialize)]
@@ -303,6 +369,20 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
     let raw: RawPreset = serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.into_inner();
+        // the text parsed as JSON above: a "syntax" error here is serde_json's report of a
+        // value of the wrong type where a name is expected (`"layout_3d": 1`)
+        if inner.is_syntax() && path != "." {
+            return PresetError::Field {
+                source_name: source_name.into(),
+                msg: format!(
+                    "must be one of the accepted names (a string, see docs/presets.md), got {} (line {}, column {})",
+                    value_at(&value, &path).map_or("another type", kind_of),
+                    inner.line(),
+                    inner.column()
+                ),
+                path,
+            };
+        }
         if inner.is_syntax() || inner.is_eof() || path == "." {
             PresetError::Syntax {
                 source_name: source_name.into(),
@@ -426,6 +506,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             scale,
             layout_3d: t.layout_3d.unwrap_or(Layout3d::Volume),
             accept_error_estimate: t.accept_error_estimate,
+            engine: t.engine,
         });
     }
     Ok(Preset {
@@ -523,6 +604,24 @@ fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
         }
     }
     Ok(())
+}
+
+/// The value at a path such as `tables[0].engine` (serde_path_to_error's form).
+fn value_at<'a>(v: &'a serde_json::Value, path: &str) -> Option<&'a serde_json::Value> {
+    let mut v = v;
+    for part in path.split('.') {
+        let (key, index) = match part.split_once('[') {
+            Some((k, i)) => (k, Some(i.trim_end_matches(']').parse::<usize>().ok()?)),
+            None => (part, None),
+        };
+        if !key.is_empty() {
+            v = v.get(key)?;
+        }
+        if let Some(i) = index {
+            v = v.get(i)?;
+        }
+    }
+    Some(v)
 }
 
 fn kind_of(v: &serde_json::Value) -> &'static str {

@@ -288,6 +288,9 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(a) = get(&["quadrature", "accept_error_estimate"]) {
         t.insert("accept_error_estimate".into(), a.clone());
     }
+    if let Some(e) = get(&["engine", "name"]) {
+        t.insert("engine".into(), e.clone());
+    }
     if axes.len() == 3 {
         if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
             t.insert("layout_3d".into(), l.clone());

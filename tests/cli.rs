@@ -1029,6 +1029,21 @@ const FIXTURES: &[(&str, i32, &[&str])] = &[
         &["tables[0].scale", "(0, 1e30]", "got -2"],
     ),
     (
+        "engine-unknown.json",
+        INPUT,
+        &[
+            "tables[0].engine",
+            "unknown variant `three`",
+            "threejs",
+            "blender",
+        ],
+    ),
+    (
+        "engine-number.json",
+        INPUT,
+        &["tables[0].engine", "accepted names", "got a number"],
+    ),
+    (
         "deeply-nested.json",
         INPUT,
         &["invalid JSON", "line 1", "recursion limit exceeded"],

@@ -113,6 +113,7 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         scale: 1.0,
         layout_3d: Layout3d::Volume,
         accept_error_estimate: None,
+        engine: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((

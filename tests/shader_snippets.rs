@@ -1,8 +1,11 @@
-//! Shader snippets: the WGSL is parsed and validated by naga as generated and inside a module
+//! Shader snippets (of test tables and of every default preset's table): the WGSL is parsed
+//! and validated by naga (full validation) as generated and inside a module
 //! that calls it from a fragment shader; the GLSL is validated by naga's GLSL frontend inside
 //! a `#version 450` fragment shader (naga reads only Vulkan-style separate textures and
 //! samplers, so the combined-sampler parameters are rewritten mechanically into a texture and
-//! a sampler first); the HLSL signatures are checked as text. The coordinate transform is
+//! a sampler, and the `highp` qualifiers dropped, first); the HLSL signatures are checked as
+//! text. The real compilers of each language (glslang for GLSL ES, desktop and Vulkan GLSL and
+//! HLSL, spirv-val on their SPIR-V) run in tests/shader_compilers.rs. The coordinate transform is
 //! checked numerically: `texture_coordinates` fed into an emulated GPU fetch (linear
 //! filtering of normalized coordinates, clamp-to-edge) equals `Lut::lookup`.
 
@@ -13,6 +16,9 @@ use brdfbake::encode::Encoder;
 use brdfbake::lut::{Axis, Channel, Convention, Lut, Quantity};
 use brdfbake::model::RoughnessQuantity;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
+
+#[path = "common/defaults.rs"]
+mod defaults;
 
 fn axis(name: &str, size: usize, range: [f64; 2], convention: Convention) -> Axis {
     Axis {
@@ -184,14 +190,37 @@ fn axis_args(lut: &Lut) -> String {
         .join(", ")
 }
 
+/// Header attributes of a snippet.
+type Attributes = Vec<(String, String)>;
+
+/// The tables the naga checks run on, with the attribute sets of their snippets: the test
+/// tables with none, the test attributes and a scale; every default preset's table with its
+/// own header attributes.
+fn naga_cases(scale: &str) -> Vec<(String, Lut, Vec<Attributes>)> {
+    let mut v: Vec<_> = tables()
+        .into_iter()
+        .map(|(name, lut)| {
+            let sets = vec![
+                vec![],
+                attributes(name),
+                vec![("scale".to_string(), scale.to_string())],
+            ];
+            (name.to_string(), lut, sets)
+        })
+        .collect();
+    for (preset, t) in defaults::tables() {
+        let lut = defaults::shaped_lut(&t);
+        let attrs = brdfbake::meta::header_attributes(&preset, &t, &lut);
+        v.push((t.spec.name.clone(), lut, vec![attrs]));
+    }
+    v
+}
+
 #[test]
 fn wgsl_snippets_validate_with_naga() {
-    for (name, lut) in tables() {
-        for attrs in [
-            vec![],
-            attributes(name),
-            vec![("scale".into(), "0.001".into())],
-        ] {
+    for (name, lut, sets) in naga_cases("0.001") {
+        let name = name.as_str();
+        for attrs in sets {
             let src = snippet(ShaderLang::Wgsl, name, &lut, &attrs);
             let module = parse_wgsl(&src, name);
             validate(&module, &src, name);
@@ -231,9 +260,10 @@ fn wgsl_snippets_validate_with_naga() {
 }
 
 /// Rewrites the combined-sampler parameters of a GLSL snippet into a separate texture and
-/// sampler (`sampler2D lut` → `texture2D lut_texture, sampler lut_sampler`, and
+/// sampler (`highp sampler2D lut` → `texture2D lut_texture, sampler lut_sampler`, and
 /// `textureLod(lut, …)` → `textureLod(sampler2D(lut_texture, lut_sampler), …)`), the only
-/// form naga's GLSL frontend reads.
+/// form naga's GLSL frontend reads, and drops the `highp` qualifiers, which it does not read
+/// on parameters (glslang compiles the snippets as written: tests/shader_compilers.rs).
 fn separate_samplers(src: &str) -> String {
     let mut out = String::new();
     let mut current = "";
@@ -245,7 +275,7 @@ fn separate_samplers(src: &str) -> String {
                 ("sampler2D", "texture2D"),
                 ("sampler3D", "texture3D"),
             ] {
-                let param = format!("({combined} lut,");
+                let param = format!("(highp {combined} lut,");
                 if line.contains(&param) {
                     current = combined;
                     line = line.replace(
@@ -258,6 +288,7 @@ fn separate_samplers(src: &str) -> String {
                 "textureLod(lut, ",
                 &format!("textureLod({current}(lut_texture, lut_sampler), "),
             );
+            line = line.replace("highp ", "");
         }
         out.push_str(&line);
         out.push('\n');
@@ -267,12 +298,9 @@ fn separate_samplers(src: &str) -> String {
 
 #[test]
 fn glsl_snippets_validate_with_naga() {
-    for (name, lut) in tables() {
-        for attrs in [
-            vec![],
-            attributes(name),
-            vec![("scale".into(), "1e3".into())],
-        ] {
+    for (name, lut, sets) in naga_cases("1e3") {
+        let name = name.as_str();
+        for attrs in sets {
             let src = snippet(ShaderLang::Glsl, name, &lut, &attrs);
             let nc = lut.channels.len();
             let widen = |v: &str| match nc {
@@ -295,7 +323,7 @@ fn glsl_snippets_validate_with_naga() {
                     _ => ("texture2D", "sampler2D"),
                 };
                 assert!(
-                    src.contains(&format!("{f}({combined} lut, ")),
+                    src.contains(&format!("{f}(highp {combined} lut, ")),
                     "{f} takes a {combined}\n{src}"
                 );
                 shader.push_str(&format!(

@@ -200,6 +200,25 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     if a.check {
         return check(&a, &presets, formats.as_deref());
     }
+    // what does not work in the tables' engines (preset field `engine`), before the work
+    let mut warnings = Vec::new();
+    for p in &presets {
+        for t in &p.tables {
+            let written = crate::preset::PresetTable {
+                formats: formats.clone().unwrap_or_else(|| t.formats.clone()),
+                ..t.clone()
+            };
+            let engine = t.engine.map_or("", |e| e.name());
+            for w in crate::engine::warnings(&written) {
+                warnings.push((p.name.clone(), t.spec.name.clone(), engine, w));
+            }
+        }
+    }
+    if !a.quiet && !a.json {
+        for (p, t, engine, w) in &warnings {
+            eprintln!("warning: {p}/{t} (engine {engine}): {w}");
+        }
+    }
     let started = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.map_or(0, usize::from))
@@ -243,9 +262,15 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
                     .zip(&b.lut.error_estimate)
                     .map(|(c, e)| (c.name.clone(), serde_json::json!(e)))
                     .collect();
+                let w: Vec<&str> = warnings
+                    .iter()
+                    .filter(|(p, t, _, _)| *p == b.preset && *t == b.table)
+                    .map(|(_, _, _, w)| w.as_str())
+                    .collect();
                 serde_json::json!({
                     "preset": b.preset,
                     "table": b.table,
+                    "warnings": w,
                     "size": b.lut.axes.iter().map(|x| x.size).collect::<Vec<_>>(),
                     "axes": b.lut.axes.iter().map(|x| x.name.clone()).collect::<Vec<_>>(),
                     "channels": b.lut.channels.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),

@@ -1,6 +1,7 @@
 //! `brdfbake probe FILE --at name=value,...`: what a GPU reads vs the exact value.
 
 use super::CliError;
+use crate::lut::Filter;
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -15,11 +16,23 @@ pub struct ProbeArgs {
     /// cos_theta_v=0.5,roughness=0.3; the names are the sidecar's axis names).
     #[arg(long, value_name = "NAME=VALUE,...")]
     pub at: String,
+    /// How the GPU weights the texels: `ideal` (exact weights, as CPUs and software
+    /// rasterizers filter) or `hardware` (weights rounded to multiples of 1/256, as GPUs
+    /// with 8 bits of sub-texel precision filter: the value such a GPU reads).
+    #[arg(long, value_enum, default_value_t = FilterArg::Ideal)]
+    pub filter: FilterArg,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
     pub guards: super::guards::Guards,
+}
+
+/// `--filter`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterArg {
+    Ideal,
+    Hardware,
 }
 
 /// Parses `a=1,b=2` against the axis names; every axis exactly once.
@@ -95,11 +108,55 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         );
     }
     let x = parse_at(&a.at, &names)?;
-    let gpu: Vec<f64> = lut.lookup(&x).iter().map(|v| v / rb.scale).collect();
-    let (exact, err) = crate::readback::exact_at(&table.spec, &x, EXACT_TOLERANCE)
-        .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
+    let unscale = |v: Vec<f64>| -> Vec<f64> { v.iter().map(|v| v / rb.scale).collect() };
+    let ideal = unscale(lut.lookup(&x));
+    let hw_axes = table.hardware_filtered_axes();
+    let gpu = match a.filter {
+        FilterArg::Ideal => ideal.clone(),
+        FilterArg::Hardware => unscale(lut.lookup_filtered(&x, Filter::Hardware { axes: hw_axes })),
+    };
+    let bound = unscale(lut.weight_rounding_bound(hw_axes));
+    // beyond the edge texels the GPU reads the edge texel (clamp-to-edge): where the exact
+    // value has no meaning at `x` (a cosine above 1), it is given where the GPU reads
+    let mut exact_x = x.clone();
+    let (exact, err) = match crate::readback::exact_at(&table.spec, &x, EXACT_TOLERANCE) {
+        Ok(r) => r,
+        Err(e) => {
+            for (v, ax) in exact_x.iter_mut().zip(&lut.axes) {
+                let (first, last) = (ax.coord(0), ax.coord(ax.size - 1));
+                *v = v.clamp(first.min(last), first.max(last));
+            }
+            if exact_x == x {
+                return Err(CliError::input(format!("--at {}: {e}", a.at)));
+            }
+            let r = crate::readback::exact_at(&table.spec, &exact_x, EXACT_TOLERANCE)
+                .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
+            notes.push(format!(
+                "{e} at the given point: the exact value is given where the GPU reads, at the edge texels' coordinates ({})",
+                names
+                    .iter()
+                    .zip(&exact_x)
+                    .map(|(n, v)| format!("{n}={v}"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ));
+            r
+        }
+    };
     if deadline.passed() {
         return Err(super::guards::stopped("this probe", &deadline));
+    }
+    let filtered: Vec<&str> = lut.axes[..hw_axes]
+        .iter()
+        .map(|ax| ax.name.as_str())
+        .collect();
+    if a.filter == FilterArg::Hardware {
+        notes.push(format!(
+            "hardware filtering: the weights along {} are rounded to multiples of 1/256 (8-bit sub-texel precision){}; anywhere in this table that moves a lookup by at most {} per channel",
+            filtered.join(", "),
+            if hw_axes < lut.axes.len() { "; the 2D-array layout blends the slices in the shader, exactly" } else { "" },
+            bound.iter().map(|b| format!("{b:.3e}")).collect::<Vec<_>>().join(", ")
+        ));
     }
     notes.extend(
         lut.axes
@@ -119,16 +176,36 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             .iter()
             .enumerate()
             .map(|(c, ch)| {
-                json!({"channel": ch.name, "gpu": gpu[c], "exact": exact[c], "exact_error_estimate": err[c], "difference": gpu[c] - exact[c]})
+                let mut v = json!({"channel": ch.name, "gpu": gpu[c], "exact": exact[c], "exact_error_estimate": err[c], "difference": gpu[c] - exact[c]});
+                if a.filter == FilterArg::Hardware {
+                    v["gpu_ideal"] = json!(ideal[c]);
+                    v["weight_rounding"] = json!(gpu[c] - ideal[c]);
+                    v["weight_rounding_bound"] = json!(bound[c]);
+                }
+                v
             })
             .collect();
-        let doc = json!({
+        let point = |p: &[f64]| -> serde_json::Map<String, serde_json::Value> {
+            names
+                .iter()
+                .zip(p)
+                .map(|(n, v)| (n.to_string(), json!(v)))
+                .collect()
+        };
+        let mut doc = json!({
             "file": a.file.display().to_string(),
-            "at": names.iter().zip(&x).map(|(n, v)| (n.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+            "filter": match a.filter { FilterArg::Ideal => "ideal", FilterArg::Hardware => "hardware" },
+            "at": point(&x),
             "texture_coordinates": lut.axes.iter().zip(&x).map(|(ax, v)| ax.texture_coordinate(*v)).collect::<Vec<_>>(),
             "channels": ch,
             "notes": notes,
         });
+        if exact_x != x {
+            doc["exact_at"] = json!(point(&exact_x));
+        }
+        if a.filter == FilterArg::Hardware {
+            doc["hardware_filtered_axes"] = json!(filtered);
+        }
         outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")
@@ -145,7 +222,10 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     outln!(
         "{:<12} {:>20} {:>20} {:>12}",
         "channel",
-        "GPU (filtered)",
+        match a.filter {
+            FilterArg::Ideal => "GPU (filtered)",
+            FilterArg::Hardware => "GPU (8-bit weights)",
+        },
         "exact",
         "difference"
     );
@@ -157,6 +237,15 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             exact[c],
             gpu[c] - exact[c]
         );
+    }
+    if a.filter == FilterArg::Hardware {
+        let v: Vec<String> = lut
+            .channels
+            .iter()
+            .zip(&ideal)
+            .map(|(ch, v)| format!("{} {v:.12}", ch.name))
+            .collect();
+        outln!("ideal filtering (exact weights): {}", v.join(", "));
     }
     for n in notes {
         outln!("note: {n}");

@@ -147,6 +147,71 @@ pub fn verify_texels(
     Ok(Some((texels.len(), out)))
 }
 
+/// Per channel: (largest |lookup − exact| measured at cell middles, the cell middle's
+/// physical coordinates, lookup, exact).
+pub type LookupError = (f64, Vec<f64>, f64, f64);
+
+/// The middle of the cell of `lut` that starts at texel `idx` (the cell before it on an
+/// axis' last texel; an axis of one texel stays at it), in physical coordinates: where linear
+/// interpolation errs the most along every axis at once.
+pub fn cell_middle(lut: &Lut, idx: &[usize; 3]) -> Vec<f64> {
+    lut.axes
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            if a.size == 1 {
+                return a.coord(0);
+            }
+            let i = idx[k].min(a.size - 2);
+            0.5 * (a.coord(i) + a.coord(i + 1))
+        })
+        .collect()
+}
+
+/// Measures the lookup error between texels: at the middle of the cell of every texel of
+/// `texels`, the ideal lookup of `lut` (stored values divided by `scale`) against the value
+/// recomputed from `spec` at [`REFERENCE_TOLERANCE`]. `None` when `deadline` passed first.
+pub fn verify_lookups(
+    spec: &TableSpec,
+    lut: &Lut,
+    scale: f64,
+    texels: &[[usize; 3]],
+    deadline: Option<&crate::deadline::Deadline>,
+) -> Result<Option<(usize, Vec<LookupError>)>, String> {
+    let mut points: Vec<Vec<f64>> = texels.iter().map(|t| cell_middle(lut, t)).collect();
+    points.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+    points.dedup();
+    let stopped = std::sync::atomic::AtomicBool::new(false);
+    let exact: Vec<Result<Vec<f64>, String>> = points
+        .par_iter()
+        .map(|x| {
+            use std::sync::atomic::Ordering::Relaxed;
+            if stopped.load(Relaxed) || deadline.is_some_and(|d| d.passed()) {
+                stopped.store(true, Relaxed);
+                return Ok(Vec::new());
+            }
+            crate::readback::exact_at(spec, x, REFERENCE_TOLERANCE).map(|r| r.0)
+        })
+        .collect();
+    if stopped.into_inner() {
+        return Ok(None);
+    }
+    let nc = lut.channels.len();
+    let mut out: Vec<LookupError> = vec![(0.0, Vec::new(), 0.0, 0.0); nc];
+    for (x, ex) in points.iter().zip(exact) {
+        let ex = ex?;
+        let got = lut.lookup(x);
+        for c in 0..nc {
+            let v = got[c] / scale;
+            let d = (v - ex[c]).abs();
+            if d > out[c].0 || d.is_nan() || out[c].1.is_empty() {
+                out[c] = (d, x.clone(), v, ex[c]);
+            }
+        }
+    }
+    Ok(Some((points.len(), out)))
+}
+
 pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
         return Err(CliError::input(format!(
@@ -169,7 +234,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         )));
     }
     let threads = rayon::current_num_threads();
-    let mut jobs: Vec<(String, TableSpec, Lut, f64)> = Vec::new();
+    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
+    // a table baked here)
+    let mut jobs: Vec<(
+        String,
+        crate::preset::PresetTable,
+        Lut,
+        f64,
+        serde_json::Value,
+    )> = Vec::new();
     let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
     if let Some(sc) = schema.as_deref() {
@@ -217,9 +290,10 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             ))
         })?;
         // the time, now that the table is known
+        // (every checked texel and the middle of its cell)
         let time = recompute_time(
             &table,
-            checked_count([lut.dim(0), lut.dim(1), lut.dim(2)], a.all),
+            2 * checked_count([lut.dim(0), lut.dim(1), lut.dim(2)], a.all),
         );
         crate::resources::check_time_of(
             "this verify",
@@ -230,7 +304,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         )
         .map_err(CliError::input)?;
         deadline = Some(d);
-        jobs.push((a.target.clone(), table.spec, lut, rb.scale));
+        // (a texture read back has no error estimates: the sidecar's statement is the one)
+        let stated = rb
+            .sidecar
+            .as_ref()
+            .and_then(|s| s.get("lookup_error").cloned())
+            .unwrap_or_else(|| crate::meta::lookup_error(&table, &lut));
+        jobs.push((a.target.clone(), table, lut, rb.scale, stated));
     } else {
         // a .json without a sidecar's schema is read as a preset; say so when that fails,
         // so that a damaged sidecar is not reported only in a preset's terms
@@ -252,7 +332,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         let mut time = crate::resources::estimate_time(&presets);
         for t in presets.iter().flat_map(|p| &p.tables) {
             let dims = [0, 1, 2].map(|k| t.spec.axes.get(k).map_or(1, |x| x.size));
-            time = time + recompute_time(t, checked_count(dims, a.all));
+            time = time + recompute_time(t, 2 * checked_count(dims, a.all));
         }
         let est = crate::resources::estimate(&presets, Some(&[]));
         let d = a.guards.admit(&super::guards::Work {
@@ -272,28 +352,38 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 };
                 let lut = crate::table::bake_with(&t.spec, &opts)
                     .map_err(|e| super::bake_error(&preset.name, e))?;
+                // (baked here, the texels are the values: no scale applied)
+                let values = crate::preset::PresetTable {
+                    scale: 1.0,
+                    ..t.clone()
+                };
+                let stated = crate::meta::lookup_error(&values, &lut);
                 jobs.push((
                     format!("{}/{}", preset.name, t.spec.name),
-                    t.spec.clone(),
+                    t.clone(),
                     lut,
                     1.0,
+                    stated,
                 ));
             }
         }
     }
     let mut failed = Vec::new();
     let mut docs = Vec::new();
-    for (label, spec, lut, scale) in &jobs {
+    for (label, table, lut, scale, sidecar) in &jobs {
+        let spec = &table.spec;
         let texels = if a.all {
             all_texels(lut)
         } else {
             sample_texels(lut)
         };
+        let stopped = || super::guards::stopped("this verify", deadline.as_ref().expect("set"));
         let (n, errs) = verify_texels(spec, lut, *scale, &texels, deadline.as_ref())
             .map_err(CliError::input)?
-            .ok_or_else(|| {
-                super::guards::stopped("this verify", deadline.as_ref().expect("set"))
-            })?;
+            .ok_or_else(stopped)?;
+        let (cells, lookups) = verify_lookups(spec, lut, *scale, &texels, deadline.as_ref())
+            .map_err(CliError::input)?
+            .ok_or_else(stopped)?;
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;
         if !a.json {
             outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
@@ -317,7 +407,30 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         if f16 && !a.json {
             outln!("  note: f16 storage rounds by up to 4.9e-4 relative; pass --tolerance 1e-3 to check such files");
         }
-        docs.push(json!({"table": label, "texels_checked": n, "channels": chans}));
+        // lookups between texels: measured with ideal weights; 8-bit hardware weights move
+        // them by at most the bound (not gated: the interpolation error is the resolution's)
+        if !a.json {
+            outln!(
+                "  lookups between texels ({cells} cell middles, ideal filtering; hardware = + 8-bit weight rounding bound):"
+            );
+        }
+        let mut lookup_docs = Vec::new();
+        for (c, (e, at, got, exact)) in lookups.iter().enumerate() {
+            let name = &lut.channels[c].name;
+            let num = |k: &str| sidecar[k][name.as_str()].as_f64().unwrap_or(f64::NAN);
+            let (estimate, bound) = (num("interpolation_estimate"), num("weight_rounding_bound"));
+            let worst = num("ideal_filtering");
+            let within = *e <= worst;
+            if !a.json {
+                outln!(
+                    "  {name:<12} max error {e:.3e} at {at:?} (lookup {got:.12}, exact {exact:.12}); hardware up to {:.3e}; sidecar: worst case {worst:.3e} ({}), smooth-table estimate {estimate:.3e}, 8-bit weights {bound:.3e}",
+                    e + bound,
+                    if within { "holds" } else { "EXCEEDED: the function has a peak or dip between texel centres there" }
+                );
+            }
+            lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_ideal_filtering": worst, "within_sidecar_worst_case": within, "sidecar_interpolation_estimate": estimate}));
+        }
+        docs.push(json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}}));
     }
     if a.json {
         let doc = json!({"tolerance": a.tolerance, "reference_tolerance": REFERENCE_TOLERANCE, "ok": failed.is_empty(), "tables": docs});

@@ -24,8 +24,13 @@
 //! A `scale` attribute other than 1 (stored texel = value × scale, see the presets' `scale`)
 //! makes the functions divide what they sample by it, so they return the values as computed.
 //!
-//! GLSL functions take `sampler2D`/`sampler3D`/`sampler2DArray` (OpenGL GLSL `#version 450`,
-//! or Vulkan GLSL with combined image samplers); HLSL and WGSL functions take a texture and a
+//! GLSL functions take `sampler2D`/`sampler3D`/`sampler2DArray` and compile as written in GLSL
+//! ES 3.00 (WebGL2), OpenGL GLSL 3.30 to 4.60 core and Vulkan GLSL (combined image samplers):
+//! every declaration they make (parameters, locals, the return type) is `highp`, because GLSL
+//! ES gives `sampler3D` and `sampler2DArray` no default precision, `sampler2D` a default of
+//! `lowp`, and a fragment shader's floats the precision its own `precision` statement says
+//! (often `mediump`, ~3 decimal digits: too coarse for texture coordinates). Desktop and Vulkan
+//! GLSL accept the qualifiers and ignore them. HLSL and WGSL functions take a texture and a
 //! sampler. All sample mip level 0 explicitly, so they work in any shader stage.
 
 use super::source::{
@@ -227,6 +232,15 @@ impl ShaderSnippet {
              the rows in file order, no y-flip."
                 .into(),
         );
+        if self.lang == ShaderLang::Glsl {
+            d.push(
+                "GLSL: compiles as written in GLSL ES 3.00 (WebGL2), GLSL 3.30-4.60 core and Vulkan GLSL \
+                 (after your #version line). Every declaration here is highp; in GLSL ES declare the \
+                 texture uniform highp too (`uniform highp sampler2D lut;`): ES has no default precision \
+                 for sampler3D and sampler2DArray, and defaults sampler2D to lowp."
+                    .into(),
+            );
+        }
         if self.lang == ShaderLang::Wgsl {
             d.push(
                 "WebGPU: 32-bit float textures are filterable only with the `float32-filterable` \
@@ -263,6 +277,9 @@ fn vector_type(lang: ShaderLang, n: usize) -> String {
         (ShaderLang::Wgsl, _) => format!("vec{n}<f32>"),
     }
 }
+
+/// The precision qualifier of every GLSL declaration (see the module documentation).
+const GLSL_PRECISION: &str = "highp";
 
 /// Names of the texture and sampler parameters; axis parameter names never collide with them.
 const TEXTURE: &str = "lut";
@@ -326,11 +343,12 @@ struct Gen<'a> {
 }
 
 impl Gen<'_> {
-    /// A local declaration `float name = expr;` / `let name = expr;`.
+    /// A local declaration `highp float name = expr;` / `float name = expr;` / `let name = expr;`.
     fn local(&self, name: &str, expr: &str) -> String {
         match self.lang {
             ShaderLang::Wgsl => format!("    let {name} = {expr};\n"),
-            _ => format!("    float {name} = {expr};\n"),
+            ShaderLang::Glsl => format!("    {GLSL_PRECISION} float {name} = {expr};\n"),
+            ShaderLang::Hlsl => format!("    float {name} = {expr};\n"),
         }
     }
 
@@ -394,20 +412,30 @@ impl Gen<'_> {
     fn function(&self, name: &str, storage: Storage) -> String {
         let lut = self.lut;
         let nc = lut.channels.len();
-        let ret = vector_type(self.lang, nc);
+        let ret = match self.lang {
+            ShaderLang::Glsl => format!("{GLSL_PRECISION} {}", vector_type(self.lang, nc)),
+            _ => vector_type(self.lang, nc),
+        };
         let swizzle = &"rgba"[..nc];
         let axis_params: Vec<String> = self
             .params
             .iter()
             .map(|p| match self.lang {
                 ShaderLang::Wgsl => format!("{p}: f32"),
-                _ => format!("float {p}"),
+                ShaderLang::Glsl => format!("{GLSL_PRECISION} float {p}"),
+                ShaderLang::Hlsl => format!("float {p}"),
             })
             .collect();
         let handles = match (self.lang, storage) {
-            (ShaderLang::Glsl, Storage::Texture2d) => format!("sampler2D {TEXTURE}"),
-            (ShaderLang::Glsl, Storage::Texture3d) => format!("sampler3D {TEXTURE}"),
-            (ShaderLang::Glsl, Storage::Array) => format!("sampler2DArray {TEXTURE}"),
+            (ShaderLang::Glsl, Storage::Texture2d) => {
+                format!("{GLSL_PRECISION} sampler2D {TEXTURE}")
+            }
+            (ShaderLang::Glsl, Storage::Texture3d) => {
+                format!("{GLSL_PRECISION} sampler3D {TEXTURE}")
+            }
+            (ShaderLang::Glsl, Storage::Array) => {
+                format!("{GLSL_PRECISION} sampler2DArray {TEXTURE}")
+            }
             (ShaderLang::Hlsl, Storage::Texture2d) => {
                 format!("Texture2D<float4> {TEXTURE}, SamplerState {SAMPLER}")
             }

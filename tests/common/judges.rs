@@ -48,3 +48,36 @@ pub fn openexr() -> bool {
         "python3 -m pip install openexr numpy",
     )
 }
+
+/// Khronos' glslang reference compiler (GLSL ES, desktop and Vulkan GLSL, and HLSL).
+pub fn glslang() -> bool {
+    available(
+        "glslangValidator",
+        &["glslangValidator", "--version"],
+        "apt-get install glslang-tools",
+    )
+}
+
+/// The SPIR-V validator of SPIRV-Tools.
+pub fn spirv_val() -> bool {
+    available(
+        "spirv-val",
+        &["spirv-val", "--version"],
+        "apt-get install spirv-tools",
+    )
+}
+
+/// three.js, installed by scripts/test with npm under target/test-tools/node (for its
+/// KTX2Loader and the ktx-parse module it ships): the package's directory.
+pub fn three_js() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("target/test-tools/node/node_modules/three");
+    let package = dir.join("package.json");
+    let probe = package.to_string_lossy().into_owned();
+    available(
+        "three.js (npm package three)",
+        &["test", "-f", &probe],
+        "npm install --prefix target/test-tools/node three",
+    )
+    .then_some(dir)
+}

@@ -1,0 +1,1112 @@
+//! The GPU path, end to end: every default preset's table, baked to KTX2 with its GLSL and
+//! WGSL snippets, is uploaded as an engine uploads it and sampled through the generated
+//! snippet on a software GPU in headless Chromium (SwiftShader, which filters in f32):
+//!
+//! - WebGL2 through three.js: `KTX2Loader` (with `LinearFilter` set, see docs/engines.md) for
+//!   1D, 2D and 3D-volume tables, a `DataArrayTexture` built from ktx-parse for the 2D-array
+//!   layout; the GLSL snippet in a `RawShaderMaterial` (GLSL ES 3.00, no precision statement
+//!   added); results rendered to an RGBA32F target and read back as f32;
+//! - WebGPU: the KTX2 level uploaded with `writeTexture` (2D, 3D and 2D-array views), the
+//!   WGSL snippet in a compute shader writing f32 to a storage buffer; f32 tables on a
+//!   device with `float32-filterable`, every table again as f16 on a device without it, and
+//!   an f32 table on that device, which WebGPU must refuse.
+//!
+//! Points, per axis: texel centres, points between texels (¼, ½, 0.8 of a cell), the range
+//! ends and beyond them (30 % of the range), and every combination of those across the axes
+//! (so between 3D slices too). Every value read back is compared with the lookup brdfbake's
+//! `probe` computes (`Lut::lookup` of the KTX2 read back, ÷ scale), to f32 precision; at a
+//! spread of points `brdfbake probe --json` itself is run and its `gpu` and `exact` values are
+//! compared too, the exact ones within the interpolation bound (see [`interpolation_bound`]
+//! and [`gpu_tolerance`] for the arguments).
+//!
+//! The same comparisons must fail on deliberately broken inputs, as asserted sub-cases: a
+//! y-flipped texture, a half-texel shift, a missing endpoint remap, and slices or layers in
+//! the wrong order.
+//!
+//! The page and every file it loads are served by this test on 127.0.0.1; Chromium gets no
+//! other network.
+
+#[path = "common/cli.rs"]
+mod cli;
+#[path = "common/defaults.rs"]
+mod defaults;
+#[path = "common/judges.rs"]
+mod judges;
+
+use brdfbake::encode::shader::lookup_function_name;
+use brdfbake::lut::{Convention, Lut};
+use serde_json::{json, Value};
+use std::collections::HashMap;
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Duration, Instant};
+
+/// The f32 unit roundoff, 2^-24.
+const U: f64 = 1.0 / 16_777_216.0;
+/// How long the browser may take for all cases (a guard against hangs, not a speed test:
+/// the runs take well under a minute here).
+const BROWSER_LIMIT: Duration = Duration::from_secs(600);
+
+/// A baked table as the test knows it.
+struct Table {
+    /// `preset/table`, with ` (array)` or ` (f16)` for the variants.
+    label: String,
+    /// The KTX2 file on disk (with its sidecar).
+    ktx2: PathBuf,
+    /// The generated snippets, as written.
+    glsl: String,
+    wgsl: String,
+    /// The stored texels (stored = value × scale), read back from the KTX2.
+    lut: Lut,
+    scale: f64,
+    /// `2d` (1D and 2D tables), `3d` or `array`.
+    layout: &'static str,
+    /// The sidecar's `lookup_error.texel_error` per channel: quadrature estimate plus storage
+    /// rounding of the largest value.
+    texel_error: Vec<f64>,
+    /// Channel names.
+    channels: Vec<String>,
+    /// Sample points (physical coordinates, f32-representable; unused axes 0).
+    points: Vec<[f64; 3]>,
+    /// `brdfbake probe --json` at some of the points: (point index, gpu, exact inside the
+    /// hull of the texel centres).
+    probes: Vec<(usize, Vec<f64>, Option<Vec<f64>>)>,
+}
+
+/// Physical test coordinates along an axis of `lut`, rounded to f32: texel centres (the
+/// first two, the middle one, the last two), ¼, ½ and 0.8 of the way through the first,
+/// a middle and the last cell, the range ends, and 30 % of the range beyond them.
+fn axis_points(lut: &Lut, k: usize) -> Vec<f64> {
+    let a = &lut.axes[k];
+    let n = a.size;
+    let mut v = Vec::new();
+    for i in [0, 1, n / 2, n.saturating_sub(2), n - 1] {
+        if i < n {
+            v.push(a.coord(i));
+        }
+    }
+    if n >= 2 {
+        for cell in [0, n / 2 - 1, n - 2] {
+            for f in [0.25, 0.5, 0.8] {
+                v.push(a.coord(cell) + f * (a.coord(cell + 1) - a.coord(cell)));
+            }
+        }
+    }
+    let [lo, hi] = a.range;
+    v.extend([lo, hi, lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo)]);
+    let mut v: Vec<f64> = v.into_iter().map(|x| x as f32 as f64).collect();
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v.dedup();
+    v
+}
+
+/// Every combination of the axes' test coordinates.
+fn points(lut: &Lut) -> Vec<[f64; 3]> {
+    let per_axis: Vec<Vec<f64>> = (0..lut.axes.len()).map(|k| axis_points(lut, k)).collect();
+    let mut out = vec![[0.0; 3]];
+    for (k, values) in per_axis.iter().enumerate() {
+        out = out
+            .into_iter()
+            .flat_map(|p| {
+                values.iter().map(move |&x| {
+                    let mut q = p;
+                    q[k] = x;
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// Whether `x` lies in the hull of the texel centres (where a lookup interpolates; outside
+/// it, clamp-to-edge returns edge texels).
+fn inside_hull(lut: &Lut, x: &[f64]) -> bool {
+    lut.axes.iter().enumerate().all(|(k, a)| {
+        let (first, last) = (a.coord(0), a.coord(a.size - 1));
+        x[k] >= first.min(last) && x[k] <= first.max(last)
+    })
+}
+
+/// The cell of `x` along every axis: (first texel, second texel, fraction), the cell before
+/// the last texel at the upper edge (so that its steps are the ones a coordinate error there
+/// crosses).
+fn cell(lut: &Lut, x: &[f64]) -> Vec<(usize, usize, f64)> {
+    lut.axes
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            if a.size == 1 {
+                return (0, 0, 0.0);
+            }
+            let p = a.texel_position(x[k]);
+            let i = (p.floor() as usize).min(a.size - 2);
+            (i, i + 1, p - i as f64)
+        })
+        .collect()
+}
+
+/// The texels at the corners of the cell, as index triples.
+fn corners(c: &[(usize, usize, f64)]) -> Vec<[usize; 3]> {
+    let mut out = Vec::new();
+    for m in 0..(1usize << c.len()) {
+        let mut idx = [0; 3];
+        for (k, &(i0, i1, _)) in c.iter().enumerate() {
+            idx[k] = if (m >> k) & 1 == 1 { i1 } else { i0 };
+        }
+        out.push(idx);
+    }
+    out
+}
+
+/// How far the f32 GPU path may read from the f64 lookup at `x`, per channel (stored units).
+///
+/// The argument, per axis k of N texels over [lo, hi] (u = 2^-24): the snippet computes
+/// t = (x − lo)/(hi − lo) in f32 from the f32 literals lo, hi: |δt| ≤ u·(3 + 2(|lo| + |hi|)/
+/// (hi − lo)) = u·c_t. The endpoint remap (0.5 + t(N − 1))/N and the texture unit's own
+/// s·N − 0.5 add at most 5u·N to the texel-space position q: |δq| ≤ N·u·(c_t + 5) (the
+/// centers mapping has fewer operations). The interpolant is continuous and affine in each
+/// weight with slope at most the cell's step S_k along k, so the value moves by at most
+/// Σ_k |δq_k|·S_k. The filter's f32 arithmetic (2^d products of d weights, their sum, the
+/// snippet's blend of two array layers) adds at most (2d + 4)·u·V with V the largest |texel|
+/// of the cell. SwiftShader filters in f32, so this holds there; a GPU with 8-bit weights
+/// differs by up to the sidecar's weight-rounding bound instead (`probe --filter hardware`).
+fn gpu_tolerance(lut: &Lut, x: &[f64]) -> Vec<f64> {
+    let c = cell(lut, x);
+    let cs = corners(&c);
+    let d = lut.axes.len();
+    (0..lut.channels.len())
+        .map(|ch| {
+            let v = cs
+                .iter()
+                .map(|&i| (lut.texel(i, ch) as f64).abs())
+                .fold(0.0, f64::max);
+            let mut tol = (2 * d + 4) as f64 * U * v;
+            for (k, a) in lut.axes.iter().enumerate() {
+                let [lo, hi] = a.range;
+                let ct = 3.0 + 2.0 * (lo.abs() + hi.abs()) / (hi - lo);
+                let step = cs
+                    .iter()
+                    .filter(|i| i[k] == c[k].0)
+                    .map(|&i| {
+                        let mut j = i;
+                        j[k] = c[k].1;
+                        (lut.texel(j, ch) as f64 - lut.texel(i, ch) as f64).abs()
+                    })
+                    .fold(0.0, f64::max);
+                tol += a.size as f64 * U * (ct + 5.0) * step;
+            }
+            tol
+        })
+        .collect()
+}
+
+/// How far a lookup inside the hull of the texel centres may lie from the exact function,
+/// from interpolation alone, per channel (stored units).
+///
+/// The argument: along one axis, at fraction t through a cell of width h with texels f₀, f₁,
+/// linear interpolation gives L = (1 − t)f₀ + t·f₁, so f(x) − L = (1 − t)(f(x) − f₀) +
+/// t(f(x) − f₁) and |f(x) − L| ≤ 2t(1 − t)·h·max|f'| over the cell. The bound takes h·max|f'|
+/// as twice the largest |step between neighbouring texels| along the axis in the cell and its
+/// two neighbours, on every texel line of the cell: 4t(1 − t)·max|Δ|. That needs only that
+/// the slope inside a cell is at most twice the steepest texel step around it, which holds
+/// across kinks (the V-groove G's min(1, ·)) and at the narrow peaks of D, where an estimate
+/// from second differences does not (measured: 0.5 off at a V-groove kink, 2.5 off at a
+/// D peak); across axes the errors add (f − P₁P₂f = (f − P₁f) + P₁(f − P₂f), and P₁ is a
+/// convex combination). At texel centres (t = 0 on every axis) and at the range ends of
+/// endpoints axes it is 0: there the GPU must return the exact value to within the texel
+/// error, which a half-texel error in the lookup itself would miss by half a step.
+fn interpolation_bound(lut: &Lut, x: &[f64]) -> Vec<f64> {
+    let c = cell(lut, x);
+    (0..lut.channels.len())
+        .map(|ch| {
+            let mut bound = 0.0;
+            for (k, a) in lut.axes.iter().enumerate() {
+                let (i0, _, t) = c[k];
+                if a.size < 2 || t == 0.0 {
+                    continue;
+                }
+                let mut steepest = 0.0f64;
+                for base in corners(&c) {
+                    for m in [i0 as isize - 1, i0 as isize, i0 as isize + 1] {
+                        if m < 0 || m as usize + 1 > a.size - 1 {
+                            continue;
+                        }
+                        let v = |i: usize| {
+                            let mut j = base;
+                            j[k] = i;
+                            lut.texel(j, ch) as f64
+                        };
+                        let m = m as usize;
+                        steepest = steepest.max((v(m + 1) - v(m)).abs());
+                    }
+                }
+                bound += 4.0 * t * (1.0 - t) * steepest;
+            }
+            bound
+        })
+        .collect()
+}
+
+/// A broken variant of a table, which the comparisons must catch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mutation {
+    /// The texture's rows uploaded in reverse order.
+    FlipY,
+    /// The snippet samples half a texel off along u.
+    HalfTexelShift,
+    /// The snippet samples an endpoints-convention axis without the half-texel remap.
+    NoEndpointRemap,
+    /// A 3D table's slices (or an array's layers) in reverse order.
+    ReverseSlices,
+}
+
+/// What a case must produce.
+#[derive(Clone, Debug, PartialEq)]
+enum Expect {
+    /// Values within the bounds everywhere.
+    Match,
+    /// Values that the comparisons reject (a broken input).
+    Mismatch(Mutation),
+    /// An error from the browser holding this text.
+    Error(&'static str),
+}
+
+/// One run in the browser.
+struct Case {
+    id: usize,
+    table: usize,
+    api: &'static str,
+    /// URL of the KTX2 file the page loads.
+    url: String,
+    snippet: String,
+    call: String,
+    float32_filterable: bool,
+    expect: Expect,
+}
+
+/// A KTX2 file's header facts: (width, height, depth, layers, level offset, level length).
+fn ktx2_shape(b: &[u8]) -> (usize, usize, usize, usize, usize, usize) {
+    let u32_at = |o: usize| u32::from_le_bytes(b[o..o + 4].try_into().unwrap()) as usize;
+    let u64_at = |o: usize| u64::from_le_bytes(b[o..o + 8].try_into().unwrap()) as usize;
+    (
+        u32_at(20),
+        u32_at(24),
+        u32_at(28),
+        u32_at(32),
+        u64_at(80),
+        u64_at(88),
+    )
+}
+
+/// The KTX2 file with its rows (per slice) or its slices reversed.
+fn mutate_ktx2(bytes: &[u8], m: Mutation) -> Vec<u8> {
+    let (w, h, d, layers, offset, length) = ktx2_shape(bytes);
+    let slices = d.max(layers).max(1);
+    let texel = length / (w * h * slices);
+    let row = w * texel;
+    let mut out = bytes.to_vec();
+    let level = &bytes[offset..offset + length];
+    for z in 0..slices {
+        for y in 0..h {
+            let (sz, sy) = match m {
+                Mutation::FlipY => (z, h - 1 - y),
+                Mutation::ReverseSlices => (slices - 1 - z, y),
+                _ => unreachable!("not a texture mutation"),
+            };
+            let from = (sz * h + sy) * row;
+            let to = offset + (z * h + y) * row;
+            out[to..to + row].copy_from_slice(&level[from..from + row]);
+        }
+    }
+    assert_ne!(out, bytes, "the mutation changes the texels");
+    out
+}
+
+/// The snippet with the half-texel remap of axis `k` removed or a half-texel shift added.
+fn mutate_snippet(t: &Table, snippet: &str, m: Mutation) -> String {
+    let (k, a) = match m {
+        Mutation::HalfTexelShift => (0, &t.lut.axes[0]),
+        Mutation::NoEndpointRemap => t
+            .lut
+            .axes
+            .iter()
+            .enumerate()
+            .find(|(_, a)| a.convention == Convention::Endpoints)
+            .expect("an endpoints axis"),
+        _ => unreachable!("not a snippet mutation"),
+    };
+    let n = a.size;
+    let (from, to) = match (m, a.convention) {
+        (Mutation::HalfTexelShift, Convention::Centers) => (
+            format!("s{k}_ = t{k}_;"),
+            format!("s{k}_ = t{k}_ + 0.5 / {n}.0;"),
+        ),
+        (Mutation::NoEndpointRemap, Convention::Endpoints) => (
+            format!("s{k}_ = (0.5 + t{k}_ * {}.0) / {n}.0;", n - 1),
+            format!("s{k}_ = t{k}_;"),
+        ),
+        _ => unreachable!("{m:?} on a {:?} axis", a.convention),
+    };
+    // (once per function: a 3D table's snippet has two)
+    assert!(snippet.contains(&from), "{from}\n{snippet}");
+    snippet.replace(&from, &to)
+}
+
+/// `v` of `nc` channels widened to a 4-vector.
+fn widen(ty: &str, v: &str, nc: usize) -> String {
+    match nc {
+        1 => format!("{ty}({v}, 0.0, 0.0, 1.0)"),
+        2 => format!("{ty}({v}, 0.0, 1.0)"),
+        3 => format!("{ty}({v}, 1.0)"),
+        _ => v.to_string(),
+    }
+}
+
+/// The call of the table's lookup function at the point `x` (a vec4) in `api`'s language.
+fn call(t: &Table, name: &str, api: &str) -> String {
+    let mut f = lookup_function_name(name);
+    if t.layout == "array" {
+        f.push_str("_array");
+    }
+    let args: Vec<&str> = ["x.x", "x.y", "x.z"][..t.lut.axes.len()].to_vec();
+    let nc = t.lut.channels.len();
+    if api == "webgl" {
+        widen("vec4", &format!("{f}(lut, {})", args.join(", ")), nc)
+    } else {
+        widen(
+            "vec4<f32>",
+            &format!("{f}(table, table_sampler, {})", args.join(", ")),
+            nc,
+        )
+    }
+}
+
+/// Runs `brdfbake probe --json` at a spread of the table's points (every one of the 16 mixes
+/// the axes' kinds of point differently).
+fn probe_points(dir: &Path, t: &mut Table) {
+    let names: Vec<String> = t.lut.axes.iter().map(|a| a.name.clone()).collect();
+    let per_axis: Vec<Vec<f64>> = (0..t.lut.axes.len())
+        .map(|k| axis_points(&t.lut, k))
+        .collect();
+    for j in 0..16 {
+        let x: Vec<f64> = per_axis
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v[(j * 5 + k * 7) % v.len()])
+            .collect();
+        let i = t
+            .points
+            .iter()
+            .position(|p| p[..x.len()] == x[..])
+            .expect("a test point");
+        let at: Vec<String> = names
+            .iter()
+            .zip(&x)
+            .map(|(n, v)| format!("{n}={v}"))
+            .collect();
+        let o = cli::run(
+            dir,
+            &[
+                "probe".as_ref(),
+                t.ktx2.as_os_str(),
+                "--at".as_ref(),
+                at.join(",").as_ref(),
+                "--json".as_ref(),
+            ],
+        );
+        assert!(o.status.success(), "probe {at:?}: {}", cli::stderr(&o));
+        let p: Value = serde_json::from_slice(&o.stdout).unwrap();
+        let ch = p["channels"].as_array().unwrap();
+        let gpu = ch.iter().map(|c| c["gpu"].as_f64().unwrap()).collect();
+        let exact = (inside_hull(&t.lut, &x) && p.get("exact_at").is_none())
+            .then(|| ch.iter().map(|c| c["exact"].as_f64().unwrap()).collect());
+        t.probes.push((i, gpu, exact));
+    }
+}
+
+/// Bakes `presets` (names or paths) with the KTX2 and snippet formats into `dir/out`.
+fn bake(dir: &Path, out: &str, presets: &[String]) {
+    let mut args = vec!["bake".to_string()];
+    args.extend(presets.iter().cloned());
+    args.extend(["--out", out, "--format", "ktx2,glsl,wgsl", "-q"].map(String::from));
+    let o = cli::run(dir, &args);
+    assert!(o.status.success(), "bake: {}", cli::stderr(&o));
+}
+
+/// Reads a baked table back.
+fn table(dir: &Path, out: &str, preset: &str, name: &str, variant: &str) -> Table {
+    let base = dir.join(out).join(preset).join(name);
+    let ktx2 = base.with_extension("ktx2");
+    let rb = brdfbake::readback::read(&ktx2).unwrap();
+    let lut = rb.lut.expect("a texture");
+    let pt = rb.table.expect("a sidecar");
+    let side = rb.sidecar.expect("a sidecar");
+    let layout = match (lut.axes.len(), pt.layout_3d) {
+        (3, brdfbake::preset::Layout3d::Array) => "array",
+        (3, _) => "3d",
+        _ => "2d",
+    };
+    let channels: Vec<String> = lut.channels.iter().map(|c| c.name.clone()).collect();
+    let texel_error = channels
+        .iter()
+        .map(|c| side["lookup_error"]["texel_error"][c].as_f64().unwrap())
+        .collect();
+    let points = points(&lut);
+    Table {
+        label: format!("{preset}/{name}{variant}"),
+        glsl: std::fs::read_to_string(base.with_extension("glsl")).unwrap(),
+        wgsl: std::fs::read_to_string(base.with_extension("wgsl")).unwrap(),
+        ktx2,
+        scale: rb.scale,
+        layout,
+        texel_error,
+        channels,
+        points,
+        probes: Vec::new(),
+        lut,
+    }
+}
+
+/// What the page posts back.
+#[derive(Default)]
+struct Results {
+    values: HashMap<usize, Result<Vec<f32>, String>>,
+    done: Option<Result<Value, String>>,
+}
+
+struct Site {
+    /// URL path → (bytes, content type).
+    files: HashMap<String, (Vec<u8>, &'static str)>,
+    /// Where `/three/…` is served from.
+    three: PathBuf,
+    results: Mutex<Results>,
+    changed: Condvar,
+}
+
+fn content_type(path: &str) -> &'static str {
+    match path.rsplit('.').next() {
+        Some("html") => "text/html; charset=utf-8",
+        Some("js") => "text/javascript; charset=utf-8",
+        Some("json") => "application/json",
+        Some("wasm") => "application/wasm",
+        _ => "application/octet-stream",
+    }
+}
+
+/// Serves one request (HTTP/1.1, one request per connection).
+fn handle(mut s: TcpStream, site: &Site) -> std::io::Result<()> {
+    let mut buf = Vec::new();
+    let mut chunk = [0u8; 65536];
+    let header_end = loop {
+        if let Some(i) = buf.windows(4).position(|w| w == b"\r\n\r\n") {
+            break i + 4;
+        }
+        let n = s.read(&mut chunk)?;
+        if n == 0 {
+            return Ok(());
+        }
+        buf.extend_from_slice(&chunk[..n]);
+    };
+    let head = String::from_utf8_lossy(&buf[..header_end]).into_owned();
+    let mut lines = head.lines();
+    let mut first = lines.next().unwrap_or("").split_whitespace();
+    let (method, path) = (first.next().unwrap_or(""), first.next().unwrap_or(""));
+    let length: usize = lines
+        .filter_map(|l| l.split_once(':'))
+        .find(|(k, _)| k.trim().eq_ignore_ascii_case("content-length"))
+        .and_then(|(_, v)| v.trim().parse().ok())
+        .unwrap_or(0);
+    let mut body = buf[header_end..].to_vec();
+    while body.len() < length {
+        let n = s.read(&mut chunk)?;
+        if n == 0 {
+            break;
+        }
+        body.extend_from_slice(&chunk[..n]);
+    }
+    let reply = |s: &mut TcpStream, status: &str, ty: &str, bytes: &[u8]| {
+        let head = format!(
+            "HTTP/1.1 {status}\r\nContent-Type: {ty}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n",
+            bytes.len()
+        );
+        s.write_all(head.as_bytes())?;
+        s.write_all(bytes)
+    };
+    if method == "GET" {
+        let path = if path == "/" { "/index.html" } else { path };
+        if let Some((bytes, ty)) = site.files.get(path) {
+            return reply(&mut s, "200 OK", ty, bytes);
+        }
+        if let Some(rest) = path.strip_prefix("/three/") {
+            if !rest.split('/').any(|p| p == ".." || p.is_empty()) {
+                if let Ok(bytes) = std::fs::read(site.three.join(rest)) {
+                    return reply(&mut s, "200 OK", content_type(rest), &bytes);
+                }
+            }
+        }
+        return reply(&mut s, "404 Not Found", "text/plain", b"not found");
+    }
+    let mut r = site.results.lock().unwrap();
+    let id = |p: &str| p.rsplit('/').next().and_then(|i| i.parse::<usize>().ok());
+    if let (Some(_), Some(i)) = (path.strip_prefix("/result/"), id(path)) {
+        let values = body
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        r.values.insert(i, Ok(values));
+    } else if let (Some(_), Some(i)) = (path.strip_prefix("/error/"), id(path)) {
+        r.values
+            .insert(i, Err(String::from_utf8_lossy(&body).into_owned()));
+    } else if path == "/done" {
+        r.done = Some(serde_json::from_slice(&body).map_err(|e| e.to_string()));
+    } else if path == "/fatal" {
+        r.done = Some(Err(String::from_utf8_lossy(&body).into_owned()));
+    }
+    drop(r);
+    site.changed.notify_all();
+    reply(&mut s, "200 OK", "text/plain", b"ok")
+}
+
+/// Serves the site on 127.0.0.1, runs headless Chromium (SwiftShader for WebGL2 and
+/// WebGPU) on its page until the page posts `/done`, and returns what it posted, with
+/// Chromium's log for messages.
+fn run_browser(site: Arc<Site>) -> (Results, String) {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = listener.local_addr().unwrap().port();
+    let server = site.clone();
+    std::thread::spawn(move || {
+        for s in listener.incoming().flatten() {
+            let site = server.clone();
+            std::thread::spawn(move || {
+                let _ = handle(s, &site);
+            });
+        }
+    });
+    let profile = tempfile::tempdir().unwrap();
+    let log_path = profile.path().join("chromium.log");
+    let log = std::fs::File::create(&log_path).unwrap();
+    let mut cmd = Command::new("chromium");
+    cmd.args([
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu-sandbox",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--disable-default-apps",
+        "--disable-extensions",
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
+        "--enable-unsafe-webgpu",
+        "--enable-features=Vulkan",
+        "--use-webgpu-adapter=swiftshader",
+        "--enable-logging=stderr",
+        "--v=0",
+    ])
+    .arg(format!("--user-data-dir={}", profile.path().display()))
+    .arg(format!("http://127.0.0.1:{port}/"))
+    .stdin(Stdio::null())
+    .stdout(Stdio::null())
+    .stderr(log);
+    // its own process group, so that its helper processes end with it
+    use std::os::unix::process::CommandExt;
+    cmd.process_group(0);
+    let mut child = cmd.spawn().expect("chromium starts");
+    let start = Instant::now();
+    let mut exited = None;
+    {
+        let mut r = site.results.lock().unwrap();
+        while r.done.is_none() && start.elapsed() < BROWSER_LIMIT {
+            r = site
+                .changed
+                .wait_timeout(r, Duration::from_millis(500))
+                .unwrap()
+                .0;
+            if let Some(status) = child.try_wait().unwrap() {
+                exited = Some(status);
+                break;
+            }
+        }
+    }
+    // end the browser we started: its process group, by id
+    let pgid = child.id() as libc::pid_t;
+    unsafe {
+        libc::kill(-pgid, libc::SIGTERM);
+    }
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while child.try_wait().unwrap().is_none() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    unsafe {
+        libc::kill(-pgid, libc::SIGKILL);
+    }
+    let _ = child.wait();
+    let log = std::fs::read_to_string(&log_path).unwrap_or_default();
+    let results = std::mem::take(&mut *site.results.lock().unwrap());
+    assert!(
+        results.done.is_some(),
+        "the page did not finish ({}): chromium {}\n{log}",
+        if exited.is_some() {
+            "chromium exited"
+        } else {
+            "time limit"
+        },
+        exited.map_or("still ran".into(), |s| s.to_string())
+    );
+    (results, log)
+}
+
+/// |difference| ≤ bound (false for NaN).
+fn within(difference: f64, bound: f64) -> bool {
+    difference.abs() <= bound
+}
+
+/// The comparisons of one case's values; the messages of those that fail, and how many
+/// were made.
+fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
+    let nc = t.lut.channels.len();
+    let mut fails = Vec::new();
+    let mut made = 0;
+    // the largest |GPU − lookup| / f32 bound (for the log)
+    let mut worst = 0.0f64;
+    assert_eq!(
+        values.len(),
+        4 * t.points.len(),
+        "{}: values read back",
+        t.label
+    );
+    let at = |x: &[f64]| -> String {
+        t.lut
+            .axes
+            .iter()
+            .zip(x)
+            .map(|(a, v)| format!("{}={v}", a.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let what = format!("{} [{} {}]", t.label, c.api, t.layout);
+    for (i, p) in t.points.iter().enumerate() {
+        let x = &p[..t.lut.axes.len()];
+        let want = t.lut.lookup(x);
+        let tol = gpu_tolerance(&t.lut, x);
+        for ch in 0..nc {
+            let gpu = values[4 * i + ch] as f64;
+            let (w, tol) = (want[ch] / t.scale, tol[ch] / t.scale);
+            made += 1;
+            worst = worst.max((gpu - w).abs() / tol);
+            if !within(gpu - w, tol) {
+                fails.push(format!(
+                    "{what} at {}, channel {}: GPU {gpu} vs probe's lookup {w}: |difference| {:.3e} > f32 bound {tol:.3e}",
+                    at(x),
+                    t.channels[ch],
+                    (gpu - w).abs()
+                ));
+            }
+        }
+    }
+    for (i, gpu_probe, exact) in &t.probes {
+        let x = &t.points[*i][..t.lut.axes.len()];
+        let tol = gpu_tolerance(&t.lut, x);
+        let interp = interpolation_bound(&t.lut, x);
+        let want = t.lut.lookup(x);
+        for ch in 0..nc {
+            let gpu = values[4 * i + ch] as f64;
+            let tol = tol[ch] / t.scale;
+            // probe computes the lookup this test computes (to f64 rounding)
+            let w = want[ch] / t.scale;
+            assert!(
+                (gpu_probe[ch] - w).abs() <= 1e-15 * w.abs().max(1e-300),
+                "{what}: probe {} vs lookup {w}",
+                gpu_probe[ch]
+            );
+            made += 1;
+            if !within(gpu - gpu_probe[ch], tol) {
+                fails.push(format!(
+                    "{what} at {}, channel {}: GPU {gpu} vs brdfbake probe {}: |difference| {:.3e} > f32 bound {tol:.3e}",
+                    at(x),
+                    t.channels[ch],
+                    gpu_probe[ch],
+                    (gpu - gpu_probe[ch]).abs()
+                ));
+            }
+            if let Some(exact) = exact {
+                let bound = interp[ch] / t.scale + t.texel_error[ch] + tol;
+                made += 1;
+                if !within(gpu - exact[ch], bound) {
+                    fails.push(format!(
+                        "{what} at {}, channel {}: GPU {gpu} vs exact {}: |difference| {:.3e} > interpolation bound {bound:.3e}",
+                        at(x),
+                        t.channels[ch],
+                        exact[ch],
+                        (gpu - exact[ch]).abs()
+                    ));
+                }
+            }
+        }
+    }
+    (fails, made, worst)
+}
+
+#[test]
+fn default_tables_sample_as_probe_says_on_a_software_gpu() {
+    if !judges::chromium() {
+        return;
+    }
+    let Some(three) = judges::three_js() else {
+        return;
+    };
+    let work = tempfile::tempdir().unwrap();
+    let d = work.path();
+    let names: Vec<String> = brdfbake::presets::BUILTIN
+        .iter()
+        .map(|(n, _)| n.to_string())
+        .collect();
+    bake(d, "out", &names);
+    // the variants: 3D tables as 2D arrays, every table as f16
+    let defaults = defaults::tables();
+    for (dir, edit) in [("array", "layout_3d"), ("f16", "storage")] {
+        std::fs::create_dir_all(d.join(dir)).unwrap();
+        let mut paths = Vec::new();
+        for (name, text) in brdfbake::presets::BUILTIN {
+            let mut v: Value = serde_json::from_str(text).unwrap();
+            let tables = v["tables"].as_array_mut().unwrap();
+            if edit == "layout_3d" {
+                tables.retain(|t| {
+                    defaults.iter().any(|(p, d)| {
+                        p == name && d.spec.name == t["name"] && d.spec.axes.len() == 3
+                    })
+                });
+                for t in tables.iter_mut() {
+                    t["layout_3d"] = json!("array");
+                }
+            } else {
+                for t in tables.iter_mut() {
+                    t["storage"] = json!("f16");
+                }
+            }
+            if !tables.is_empty() {
+                let p = d.join(dir).join(format!("{name}.json"));
+                std::fs::write(&p, v.to_string()).unwrap();
+                paths.push(p.display().to_string());
+            }
+        }
+        bake(d, &format!("out-{dir}"), &paths);
+    }
+    let mut tables = Vec::new();
+    for (preset, t) in &defaults {
+        tables.push(table(d, "out", preset, &t.spec.name, ""));
+        if t.spec.axes.len() == 3 {
+            tables.push(table(d, "out-array", preset, &t.spec.name, " (array)"));
+        }
+        tables.push(table(d, "out-f16", preset, &t.spec.name, " (f16)"));
+    }
+    for t in tables.iter_mut() {
+        probe_points(d, t);
+    }
+
+    // the cases
+    let mut files: HashMap<String, (Vec<u8>, &'static str)> = HashMap::new();
+    for f in ["index.html", "harness.js", "threejs.js", "webgpu.js"] {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/gpu")
+            .join(f);
+        files.insert(
+            format!("/{f}"),
+            (std::fs::read(&p).unwrap(), content_type(f)),
+        );
+    }
+    let mut cases: Vec<Case> = Vec::new();
+    let add = |files: &mut HashMap<String, (Vec<u8>, &'static str)>,
+               cases: &mut Vec<Case>,
+               ti: usize,
+               api: &'static str,
+               ktx2: Option<Vec<u8>>,
+               snippet: Option<String>,
+               float32_filterable: bool,
+               expect: Expect| {
+        let t = &tables[ti];
+        let id = cases.len();
+        let url = format!("/files/{id}.ktx2");
+        files.insert(
+            url.clone(),
+            (
+                ktx2.unwrap_or_else(|| std::fs::read(&t.ktx2).unwrap()),
+                "application/octet-stream",
+            ),
+        );
+        let name = t
+            .label
+            .split('/')
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap();
+        cases.push(Case {
+            id,
+            table: ti,
+            api,
+            url,
+            snippet: snippet.unwrap_or_else(|| {
+                if api == "webgl" {
+                    t.glsl.clone()
+                } else {
+                    t.wgsl.clone()
+                }
+            }),
+            call: call(t, name, api),
+            float32_filterable,
+            expect,
+        });
+    };
+    for (ti, t) in tables.iter().enumerate() {
+        let f16 = t.label.ends_with("(f16)");
+        if !f16 {
+            add(
+                &mut files,
+                &mut cases,
+                ti,
+                "webgl",
+                None,
+                None,
+                true,
+                Expect::Match,
+            );
+        }
+        // f16 tables on a device without float32-filterable
+        add(
+            &mut files,
+            &mut cases,
+            ti,
+            "webgpu",
+            None,
+            None,
+            !f16,
+            Expect::Match,
+        );
+    }
+    let find = |label: &str| {
+        tables
+            .iter()
+            .position(|t| t.label == label)
+            .unwrap_or_else(|| panic!("no table {label}"))
+    };
+    // an f32 table on a device without float32-filterable: WebGPU refuses it
+    let envbrdf = find("karis-envbrdf/envbrdf");
+    add(
+        &mut files,
+        &mut cases,
+        envbrdf,
+        "webgpu",
+        None,
+        None,
+        false,
+        Expect::Error("WebGPU validation"),
+    );
+    // the broken inputs
+    let broken = [
+        ("karis-envbrdf/envbrdf", "webgl", Mutation::FlipY),
+        ("filament-dfg/dfg", "webgpu", Mutation::FlipY),
+        ("karis-envbrdf/envbrdf", "webgl", Mutation::HalfTexelShift),
+        ("energy-albedo/e-avg", "webgpu", Mutation::HalfTexelShift),
+        (
+            "cook-torrance-1982/beckmann-d",
+            "webgpu",
+            Mutation::NoEndpointRemap,
+        ),
+        (
+            "cook-torrance-1982/vgroove-g",
+            "webgl",
+            Mutation::NoEndpointRemap,
+        ),
+        (
+            "smith-g/ggx-g2-height-correlated",
+            "webgl",
+            Mutation::ReverseSlices,
+        ),
+        (
+            "smith-g/ggx-g2-height-correlated (array)",
+            "webgpu",
+            Mutation::ReverseSlices,
+        ),
+        (
+            "fresnel-albedo/e-schlick (array)",
+            "webgl",
+            Mutation::ReverseSlices,
+        ),
+    ];
+    for (label, api, m) in broken {
+        let ti = find(label);
+        let t = &tables[ti];
+        let original = if api == "webgl" { &t.glsl } else { &t.wgsl };
+        let (ktx2, snippet) = match m {
+            Mutation::FlipY | Mutation::ReverseSlices => {
+                (Some(mutate_ktx2(&std::fs::read(&t.ktx2).unwrap(), m)), None)
+            }
+            _ => (None, Some(mutate_snippet(t, original, m))),
+        };
+        add(
+            &mut files,
+            &mut cases,
+            ti,
+            api,
+            ktx2,
+            snippet,
+            true,
+            Expect::Mismatch(m),
+        );
+    }
+    let list: Vec<Value> = cases
+        .iter()
+        .map(|c| {
+            let t = &tables[c.table];
+            let pts: Vec<f32> = t
+                .points
+                .iter()
+                .flat_map(|p| [p[0] as f32, p[1] as f32, p[2] as f32, 0.0])
+                .collect();
+            json!({"id": c.id, "api": c.api, "layout": t.layout, "ktx2": c.url, "snippet": c.snippet,
+                   "call": c.call, "points": pts, "float32_filterable": c.float32_filterable})
+        })
+        .collect();
+    files.insert(
+        "/cases.json".into(),
+        (
+            Value::Array(list).to_string().into_bytes(),
+            "application/json",
+        ),
+    );
+
+    let site = Arc::new(Site {
+        files,
+        three,
+        results: Mutex::new(Results::default()),
+        changed: Condvar::new(),
+    });
+    let (results, log) = run_browser(site);
+    let info = results.done.clone().unwrap().unwrap_or_else(|e| {
+        panic!("the page failed: {e}\n{log}");
+    });
+    eprintln!("browser: {info}");
+
+    // the traps docs/engines.md describes, as three.js and WebGPU show them here
+    assert_eq!(
+        info["webgl"]["ktx2loader_filter_nearest"], true,
+        "KTX2Loader gives uncompressed textures NearestFilter: {info}"
+    );
+    let arr = &info["webgl"]["ktx2loader_array"];
+    assert!(
+        arr["isDataTexture"] == true
+            && arr["isDataArrayTexture"] == false
+            && arr["depth"].is_null(),
+        "KTX2Loader loads a 2D-array KTX2 as a 2D texture (its first layer): {arr}"
+    );
+    assert_eq!(info["webgpu"]["float32_filterable"], true, "{info}");
+
+    let mut failures = Vec::new();
+    let mut caught = Vec::new();
+    let mut comparisons = 0;
+    let mut worst = 0.0f64;
+    for c in &cases {
+        let t = &tables[c.table];
+        let got = results.values.get(&c.id);
+        let what = format!("{} [{} {}]", t.label, c.api, t.layout);
+        match (&c.expect, got) {
+            (_, None) => failures.push(format!("{what}: no result")),
+            (Expect::Error(text), Some(Err(e))) => {
+                if !e.contains(text) {
+                    failures.push(format!("{what}: error without {text:?}: {e}"));
+                }
+            }
+            (Expect::Error(text), Some(Ok(_))) => failures.push(format!(
+                "{what}: sampled an f32 texture with filtering on a device without float32-filterable (expected {text:?})"
+            )),
+            (_, Some(Err(e))) => failures.push(format!("{what}: {e}")),
+            (Expect::Match, Some(Ok(v))) => {
+                let (f, n, w) = compare(t, c, v);
+                comparisons += n;
+                worst = worst.max(w);
+                failures.extend(f.into_iter().take(5));
+            }
+            (Expect::Mismatch(m), Some(Ok(v))) => {
+                let (f, n, _) = compare(t, c, v);
+                eprintln!(
+                    "{m:?} on {what}: {} of {n} comparisons fail, e.g.:\n  {}",
+                    f.len(),
+                    f.iter().take(2).cloned().collect::<Vec<_>>().join("\n  ")
+                );
+                if f.is_empty() {
+                    failures.push(format!("{what}: the comparisons did not catch {m:?}"));
+                }
+                caught.push(*m);
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}\nchromium log:\n{log}",
+        failures.len(),
+        failures.join("\n")
+    );
+    for m in [
+        Mutation::FlipY,
+        Mutation::HalfTexelShift,
+        Mutation::NoEndpointRemap,
+        Mutation::ReverseSlices,
+    ] {
+        assert!(caught.contains(&m), "{m:?} was run");
+    }
+    // every default table, its f16 version, and the 3D tables as arrays, through both APIs
+    assert_eq!(defaults.len(), 21);
+    assert!(comparisons > 100_000, "{comparisons}");
+    eprintln!(
+        "{} cases, {comparisons} comparisons; largest |GPU - lookup| / f32 bound {worst:.3}",
+        cases.len()
+    );
+}
+
+/// The code samples of docs/engines.md are the code this test runs: every region between
+/// `docs:begin` and `docs:end` in tests/gpu/*.js appears there verbatim, and every fenced
+/// code block there is one of those regions.
+#[test]
+fn engines_doc_quotes_the_tested_code() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("docs/engines.md")).unwrap();
+    let mut regions = 0;
+    let mut tested = Vec::new();
+    for f in ["threejs.js", "webgpu.js"] {
+        let src = std::fs::read_to_string(root.join("tests/gpu").join(f)).unwrap();
+        let mut rest = src.as_str();
+        while let Some(i) = rest.find("// docs:begin ") {
+            let after = &rest[i..];
+            let start = after.find('\n').unwrap() + 1;
+            let end = after.find("// docs:end").expect("docs:end");
+            let region = &after[start..end];
+            assert!(
+                doc.contains(region),
+                "docs/engines.md lacks this code of tests/gpu/{f} (copy it verbatim):\n{region}"
+            );
+            regions += 1;
+            tested.push(region.to_string());
+            rest = &after[end..];
+        }
+    }
+    assert_eq!(regions, 4);
+    let blocks: Vec<&str> = doc.split("```").collect();
+    assert!(
+        blocks.len() % 2 == 1,
+        "unbalanced code fences in docs/engines.md"
+    );
+    for block in blocks.iter().skip(1).step_by(2) {
+        let code = block.split_once('\n').map_or("", |(_, c)| c);
+        assert!(
+            tested.iter().any(|t| t == code),
+            "docs/engines.md has a code block no test runs:\n{code}"
+        );
+    }
+}
