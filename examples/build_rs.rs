@@ -69,6 +69,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 size: 32,
                 range: [0.0, 1.0],
                 convention: Convention::Centers,
+                warp: Default::default(),
+                clamp: None,
             },
             Axis {
                 name: "roughness".into(),
@@ -76,6 +78,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 size: 32,
                 range: [0.0, 1.0],
                 convention: Convention::Centers,
+                warp: Default::default(),
+                clamp: None,
             },
         ],
         dfg_layout: Some(DfgLayout::Filament),
@@ -98,6 +102,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         layout_3d: Layout3d::Volume,
         accept_error_estimate: None,
         engine: None,
+        axis_order: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");

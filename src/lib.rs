@@ -18,9 +18,10 @@
 //!                        fresnel: Fresnel::None, diffuse_weight: 0.0, classic: None },
 //!     axes: vec![
 //!         Axis { name: "cos_theta_v".into(), quantity: Quantity::Cosine, size: 4,
-//!                range: [0.0, 1.0], convention: Convention::Centers },
+//!                range: [0.0, 1.0], convention: Convention::Centers, warp: Default::default(), clamp: None },
 //!         Axis { name: "roughness".into(), quantity: Quantity::Roughness(RoughnessQuantity::Perceptual),
-//!                size: 4, range: [0.0, 1.0], convention: Convention::Centers },
+//!                size: 4, range: [0.0, 1.0], convention: Convention::Centers,
+//!                warp: Default::default(), clamp: None },
 //!     ],
 //!     dfg_layout: None, cloth: false, storage: Storage::F32, tolerance: 1e-7,
 //! };

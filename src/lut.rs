@@ -40,20 +40,145 @@ pub enum Quantity {
     Anisotropy,
 }
 
+/// How an axis spaces its texels: uniformly in a parameter `p = warp(x)` of its physical
+/// coordinate `x` (a cosine, a roughness, …). The axis' `range` is a range of `p`. Engines
+/// space their view axes in √(1 − cos θ) (EEVEE, the LTC tables), in θ itself (older LTC
+/// tables) or in √cos θ (texels at (i/N)² in cos θ: BSDL), to put more texels where the
+/// tabulated function changes fastest.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Warp {
+    /// `p = x`.
+    #[default]
+    Linear,
+    /// `p = √(1 − x)`, `x = 1 − p²`; p in [0, 1] (cosine axes).
+    SqrtOneMinus,
+    /// `p = √x`, `x = p²`; p in [0, 1] (cosine axes).
+    Sqrt,
+    /// `p = acos x` in radians, `x = cos p`; p in [0, π/2] (cosine axes).
+    Acos,
+}
+
+impl Warp {
+    pub const ALL: [Warp; 4] = [Warp::Linear, Warp::SqrtOneMinus, Warp::Sqrt, Warp::Acos];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Warp::Linear => "linear",
+            Warp::SqrtOneMinus => "sqrt-one-minus",
+            Warp::Sqrt => "sqrt",
+            Warp::Acos => "acos",
+        }
+    }
+
+    /// The parameter as a formula of the coordinate `x`.
+    pub fn formula(self) -> &'static str {
+        match self {
+            Warp::Linear => "p = x",
+            Warp::SqrtOneMinus => "p = sqrt(1 - x)",
+            Warp::Sqrt => "p = sqrt(x)",
+            Warp::Acos => "p = acos(x) (radians)",
+        }
+    }
+
+    /// The coordinate as a formula of the parameter `p`.
+    pub fn inverse_formula(self) -> &'static str {
+        match self {
+            Warp::Linear => "x = p",
+            Warp::SqrtOneMinus => "x = 1 - p^2",
+            Warp::Sqrt => "x = p^2",
+            Warp::Acos => "x = cos(p)",
+        }
+    }
+
+    /// The parameters the warp is defined for (the accepted `range`); `None` for any finite
+    /// number.
+    pub fn parameter_domain(self) -> Option<[f64; 2]> {
+        match self {
+            Warp::Linear => None,
+            Warp::SqrtOneMinus | Warp::Sqrt => Some([0.0, 1.0]),
+            Warp::Acos => Some([0.0, std::f64::consts::FRAC_PI_2]),
+        }
+    }
+
+    /// The coordinates the warp is defined for; a coordinate outside is clamped into it
+    /// first (as the shader snippets do).
+    pub fn coordinate_domain(self) -> Option<[f64; 2]> {
+        match self {
+            Warp::Linear => None,
+            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Acos => Some([0.0, 1.0]),
+        }
+    }
+
+    /// `p` of coordinate `x` (clamped into the warp's domain).
+    pub fn parameter(self, x: f64) -> f64 {
+        let x = match self.coordinate_domain() {
+            Some([lo, hi]) => x.clamp(lo, hi),
+            None => x,
+        };
+        match self {
+            Warp::Linear => x,
+            Warp::SqrtOneMinus => (1.0 - x).sqrt(),
+            Warp::Sqrt => x.sqrt(),
+            Warp::Acos => x.acos(),
+        }
+    }
+
+    /// The coordinate `x` of parameter `p`.
+    pub fn coordinate(self, p: f64) -> f64 {
+        match self {
+            Warp::Linear => p,
+            Warp::SqrtOneMinus => 1.0 - p * p,
+            Warp::Sqrt => p * p,
+            Warp::Acos => p.cos(),
+        }
+    }
+}
+
 /// One axis of a table.
+///
+/// Texel `i` sits at the parameter `p_i` the `convention` gives within `range`, i.e. at the
+/// coordinate `x_i = warp⁻¹(p_i)`, and holds the tabulated function's value at
+/// `clamp(x_i, clamp[0], clamp[1])` (engines evaluate their end texels slightly inside the
+/// domain, e.g. Cycles at cos θ ≥ 1e-4). A lookup of `x` samples at the texture coordinate
+/// of `warp(x)`; the function the table represents is `x ↦ f(clamp(x))`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
     /// The axis' name, which also says what it measures: `cos_theta_v`, `n_dot_h`, `roughness`, …
     pub name: String,
     pub quantity: Quantity,
     pub size: usize,
+    /// The range of the parameter `p = warp(x)` (of `x` itself for a linear axis).
     pub range: [f64; 2],
     pub convention: Convention,
+    /// How the texels are spaced in the coordinate (linear for most tables).
+    pub warp: Warp,
+    /// Where the texels' coordinates are clamped to before the function is evaluated.
+    pub clamp: Option<[f64; 2]>,
 }
 
 impl Axis {
-    /// The coordinate of texel `i` in the axis' own quantity.
-    pub fn coord(&self, i: usize) -> f64 {
+    /// A linear, unclamped axis.
+    pub fn new(
+        name: &str,
+        quantity: Quantity,
+        size: usize,
+        range: [f64; 2],
+        convention: Convention,
+    ) -> Axis {
+        Axis {
+            name: name.into(),
+            quantity,
+            size,
+            range,
+            convention,
+            warp: Warp::Linear,
+            clamp: None,
+        }
+    }
+
+    /// The parameter `p_i` of texel `i`: uniform in `range` by the convention.
+    pub fn parameter(&self, i: usize) -> f64 {
         let [lo, hi] = self.range;
         let t = match self.convention {
             Convention::Centers => (i as f64 + 0.5) / self.size as f64,
@@ -68,9 +193,53 @@ impl Axis {
         lo + (hi - lo) * t
     }
 
+    /// The coordinate `x_i = warp⁻¹(p_i)` of texel `i`, before the clamp.
+    pub fn nominal_coord(&self, i: usize) -> f64 {
+        self.warp.coordinate(self.parameter(i))
+    }
+
+    /// The coordinate of texel `i` in the axis' own quantity, where its value is evaluated:
+    /// `clamp(x_i)`.
+    pub fn coord(&self, i: usize) -> f64 {
+        self.clamped(self.nominal_coord(i))
+    }
+
+    /// `x` clamped as the texels' coordinates are: the point whose value the table holds
+    /// for a lookup at `x`.
+    pub fn clamped(&self, x: f64) -> f64 {
+        match self.clamp {
+            Some([a, b]) => x.clamp(a, b),
+            None => x,
+        }
+    }
+
     /// Every texel coordinate, in texel order.
     pub fn coords(&self) -> Vec<f64> {
         (0..self.size).map(|i| self.coord(i)).collect()
+    }
+
+    /// The smallest and largest coordinate the axis' texels cover (before the clamp): the
+    /// range of `x` a lookup interpolates in.
+    pub fn coordinate_span(&self) -> [f64; 2] {
+        let [a, b] = self.range.map(|p| self.warp.coordinate(p));
+        [a.min(b), a.max(b)]
+    }
+
+    /// `""` for a linear unclamped axis, else what the warp and the clamp do, for messages
+    /// and summaries: `, warp sqrt-one-minus (p = sqrt(1 - x), range of p), values at x clamped to [a, b]`.
+    pub fn spacing_note(&self) -> String {
+        let mut s = String::new();
+        if self.warp != Warp::Linear {
+            s.push_str(&format!(
+                ", warp {} ({}, the range is p's)",
+                self.warp.name(),
+                self.warp.formula()
+            ));
+        }
+        if let Some([a, b]) = self.clamp {
+            s.push_str(&format!(", values at x clamped to [{a}, {b}]"));
+        }
+        s
     }
 
     /// The NDF parameter α of texel `i` (roughness axes only).
@@ -89,16 +258,27 @@ impl Axis {
         }
     }
 
+    /// The normalized parameter `t = (warp(x) − lo)/(hi − lo)` of coordinate `x`, clamped
+    /// to [0, 1]; 0 on an axis of one texel.
+    pub fn normalized(&self, x: f64) -> f64 {
+        let [lo, hi] = self.range;
+        if hi == lo {
+            return 0.0;
+        }
+        ((self.warp.parameter(x) - lo) / (hi - lo)).clamp(0.0, 1.0)
+    }
+
     /// The continuous texel-space position of coordinate `x` (texel i at position i),
     /// clamped to `[0, size − 1]` as clamp-to-edge sampling does.
     pub fn texel_position(&self, x: f64) -> f64 {
         let [lo, hi] = self.range;
-        let t = if hi != lo { (x - lo) / (hi - lo) } else { 0.0 };
-        let p = match self.convention {
+        let p = self.warp.parameter(x);
+        let t = if hi != lo { (p - lo) / (hi - lo) } else { 0.0 };
+        let pos = match self.convention {
             Convention::Centers => t * self.size as f64 - 0.5,
             Convention::Endpoints => t * (self.size as f64 - 1.0),
         };
-        p.clamp(0.0, (self.size - 1) as f64)
+        pos.clamp(0.0, (self.size - 1) as f64)
     }
 
     /// The normalized texture coordinate a GPU must sample for coordinate `x`.
@@ -140,6 +320,36 @@ impl Lut {
     /// Size along axis `k`, 1 if the table has fewer axes.
     pub fn dim(&self, k: usize) -> usize {
         self.axes.get(k).map_or(1, |a| a.size)
+    }
+
+    /// The same table with its axes reordered: axis k of the result is axis `order[k]` of
+    /// this one (a permutation of `0..axes.len()`).
+    pub fn permuted(&self, order: &[usize]) -> Lut {
+        assert_eq!(order.len(), self.axes.len(), "one index per axis");
+        let axes: Vec<Axis> = order.iter().map(|&o| self.axes[o].clone()).collect();
+        let nc = self.channels.len();
+        let dim = |k: usize| axes.get(k).map_or(1, |a| a.size);
+        let mut data = Vec::with_capacity(self.data.len());
+        for z in 0..dim(2) {
+            for y in 0..dim(1) {
+                for x in 0..dim(0) {
+                    let mut old = [0usize; 3];
+                    for (k, i) in [x, y, z].into_iter().enumerate().take(order.len()) {
+                        old[order[k]] = i;
+                    }
+                    for c in 0..nc {
+                        data.push(self.texel(old, c));
+                    }
+                }
+            }
+        }
+        Lut {
+            axes,
+            channels: self.channels.clone(),
+            data,
+            error_estimate: self.error_estimate.clone(),
+            evaluations: self.evaluations,
+        }
     }
 
     /// The stored value at integer texel indices (missing axes = 0).
@@ -226,53 +436,96 @@ impl Lut {
     /// between its values at the cell's faces, so inside the cell it lies within the range of
     /// the corner texels, and so does the interpolant (a convex combination of them).
     pub fn interpolation_bound(&self) -> Vec<f64> {
-        let nc = self.channels.len();
         let dims = [self.dim(0), self.dim(1), self.dim(2)];
         let d = self.axes.len();
-        let mut out = vec![0.0f64; nc];
-        for idx in texel_indices(dims) {
+        let nc = self.channels.len();
+        let stride = self.strides();
+        // the flat offsets of a cell's corners from its first texel (an axis of one texel
+        // has no second corner)
+        let offsets: Vec<usize> = (0..(1usize << d))
+            .map(|corner| {
+                (0..d)
+                    .filter(|&k| (corner >> k) & 1 == 1 && dims[k] >= 2)
+                    .map(|k| stride[k])
+                    .sum()
+            })
+            .collect();
+        self.max_over_texels(|idx, out| {
             if (0..d).any(|k| dims[k] >= 2 && idx[k] + 1 >= dims[k]) {
-                continue;
+                return;
             }
-            for (c, o) in out.iter_mut().enumerate() {
+            let base = self.flat(idx);
+            for (c, o) in out.iter_mut().enumerate().take(nc) {
                 let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-                for corner in 0..(1usize << d) {
-                    let mut j = idx;
-                    for (k, jk) in j.iter_mut().enumerate().take(d) {
-                        if (corner >> k) & 1 == 1 && dims[k] >= 2 {
-                            *jk += 1;
-                        }
-                    }
-                    let v = self.texel(j, c) as f64;
+                for off in &offsets {
+                    let v = self.data[base + off + c] as f64;
                     lo = lo.min(v);
                     hi = hi.max(v);
                 }
                 *o = o.max(hi - lo);
             }
-        }
-        out
+        })
+    }
+
+    /// The flat index into `data` of channel 0 of texel `idx`.
+    fn flat(&self, idx: [usize; 3]) -> usize {
+        let (nx, ny) = (self.dim(0), self.dim(1));
+        ((idx[2] * ny + idx[1]) * nx + idx[0]) * self.channels.len()
+    }
+
+    /// The distance in `data` between neighbouring texels along each axis.
+    fn strides(&self) -> [usize; 3] {
+        let nc = self.channels.len();
+        let (nx, ny) = (self.dim(0), self.dim(1));
+        [nc, nx * nc, nx * ny * nc]
+    }
+
+    /// Per channel, the largest of what `f` records for each texel (`f` raises the entries
+    /// of its second argument to the texel's values): rows of texels in parallel, each row's
+    /// maxima then combined — the same bits for any thread count, since max is exact and
+    /// order-free.
+    fn max_over_texels(&self, f: impl Fn([usize; 3], &mut [f64]) + Sync) -> Vec<f64> {
+        use rayon::prelude::*;
+        let nc = self.channels.len();
+        let dims = [self.dim(0), self.dim(1), self.dim(2)];
+        (0..dims[1] * dims[2])
+            .into_par_iter()
+            .map(|r| {
+                let mut m = vec![0.0f64; nc];
+                let (y, z) = (r % dims[1], r / dims[1]);
+                for x in 0..dims[0] {
+                    f([x, y, z], &mut m);
+                }
+                m
+            })
+            .reduce(
+                || vec![0.0f64; nc],
+                |mut a, b| {
+                    for (x, y) in a.iter_mut().zip(b) {
+                        *x = x.max(y);
+                    }
+                    a
+                },
+            )
     }
 
     /// Per channel: the largest |difference| between neighbouring texels along axis `k`.
     pub fn max_steps(&self, k: usize) -> Vec<f64> {
-        let nc = self.channels.len();
-        let mut out = vec![0.0f64; nc];
         let dims = [self.dim(0), self.dim(1), self.dim(2)];
         if dims[k] < 2 {
-            return out;
+            return vec![0.0; self.channels.len()];
         }
-        for idx in texel_indices(dims) {
+        let step = self.strides()[k];
+        self.max_over_texels(|idx, out| {
             if idx[k] + 1 >= dims[k] {
-                continue;
+                return;
             }
-            let mut next = idx;
-            next[k] += 1;
+            let base = self.flat(idx);
             for (c, o) in out.iter_mut().enumerate() {
-                let d = (self.texel(next, c) as f64 - self.texel(idx, c) as f64).abs();
+                let d = (self.data[base + step + c] as f64 - self.data[base + c] as f64).abs();
                 *o = o.max(d);
             }
-        }
-        out
+        })
     }
 
     /// Per channel: an estimate of the largest error of linear interpolation between texel
@@ -285,37 +538,38 @@ impl Lut {
     pub fn interpolation_error_estimate(&self) -> Vec<f64> {
         let nc = self.channels.len();
         let dims = [self.dim(0), self.dim(1), self.dim(2)];
-        let mut out = vec![0.0f64; nc];
-        let mut sum = vec![0.0f64; nc];
-        for idx in texel_indices(dims) {
-            sum.iter_mut().for_each(|s| *s = 0.0);
-            for k in 0..self.axes.len() {
+        let d = self.axes.len();
+        let stride = self.strides();
+        self.max_over_texels(|idx, out| {
+            // (no table kind has more than 4 channels; a stack buffer keeps the loop free of
+            // allocations, a longer one is allocated)
+            let mut buf = [0.0f64; 4];
+            let mut heap = Vec::new();
+            let sum: &mut [f64] = if nc <= 4 {
+                &mut buf[..nc]
+            } else {
+                heap.resize(nc, 0.0);
+                &mut heap
+            };
+            for k in 0..d {
                 if dims[k] < 3 {
                     continue;
                 }
                 let mut mid = idx;
                 mid[k] = idx[k].clamp(1, dims[k] - 2);
-                let (mut a, mut b) = (mid, mid);
-                a[k] -= 1;
-                b[k] += 1;
+                let m = self.flat(mid);
+                let (a, b) = (m - stride[k], m + stride[k]);
                 for (c, s) in sum.iter_mut().enumerate() {
-                    let d2 = self.texel(a, c) as f64 - 2.0 * self.texel(mid, c) as f64
-                        + self.texel(b, c) as f64;
+                    let d2 = self.data[a + c] as f64 - 2.0 * self.data[m + c] as f64
+                        + self.data[b + c] as f64;
                     *s += d2.abs() / 8.0;
                 }
             }
-            for (o, s) in out.iter_mut().zip(&sum) {
+            for (o, s) in out.iter_mut().zip(sum.iter()) {
                 *o = o.max(*s);
             }
-        }
-        out
+        })
     }
-}
-
-/// Every texel index of a table of `dims`, x fastest.
-fn texel_indices(dims: [usize; 3]) -> impl Iterator<Item = [usize; 3]> {
-    (0..dims[2])
-        .flat_map(move |z| (0..dims[1]).flat_map(move |y| (0..dims[0]).map(move |x| [x, y, z])))
 }
 
 /// How a texture unit weights the texels it blends.
@@ -352,6 +606,8 @@ mod tests {
             size,
             range: [0.0, 1.0],
             convention: conv,
+            warp: Warp::Linear,
+            clamp: None,
         }
     }
 

@@ -1,7 +1,7 @@
 //! The JSON sidecar written next to every texture (schema `brdfbake.lut/1`, documented in
 //! `docs/metadata.md`): everything an engine needs to sample the texture without guessing.
 
-use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::lut::{Axis, Convention, Lut, Quantity, Warp};
 use crate::preset::PresetTable;
 use crate::table::{DfgLayout, Storage, TableKind, TableSpec};
 use serde_json::{json, Value};
@@ -28,13 +28,23 @@ pub fn inputs(table: &PresetTable) -> Value {
             "fresnel": m.fresnel,
             "diffuse": m.diffuse_weight,
         },
-        "axes": spec.axes.iter().map(|a| json!({
-            "name": a.name,
-            "quantity": quantity_name(a),
-            "size": a.size,
-            "range": a.range,
-            "convention": a.convention.name(),
-        })).collect::<Vec<_>>(),
+        "axes": spec.axes.iter().map(|a| {
+            let mut v = json!({
+                "name": a.name,
+                "quantity": quantity_name(a),
+                "size": a.size,
+                "range": a.range,
+                "convention": a.convention.name(),
+            });
+            // (only when set, so that linear unclamped axes keep their hash)
+            if a.warp != Warp::Linear {
+                v["warp"] = json!(a.warp.name());
+            }
+            if let Some(c) = a.clamp {
+                v["clamp"] = json!(c);
+            }
+            v
+        }).collect::<Vec<_>>(),
         "layout": spec.dfg_layout,
         "cloth": spec.cloth,
         "storage": spec.storage,
@@ -51,6 +61,12 @@ pub fn inputs(table: &PresetTable) -> Value {
     }
     if let Some(e) = table.engine {
         v["engine"] = json!(e.name());
+    }
+    if let Some(o) = &table.axis_order {
+        v["axis_order"] = json!(o
+            .iter()
+            .map(|&k| spec.axes[k].name.clone())
+            .collect::<Vec<_>>());
     }
     v
 }
@@ -86,19 +102,30 @@ fn texture_axis(k: usize) -> &'static str {
 
 pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
     let [lo, hi] = a.range;
-    let (texel, remap) = match a.convention {
+    // what is uniform in the texels: x itself, or the warp's parameter p
+    let linear = a.warp == Warp::Linear;
+    let (pi, p) = if linear { ("x_i", "x") } else { ("p_i", "p") };
+    let (mut texel, mut remap) = match a.convention {
         Convention::Centers => (
-            format!("x_i = {lo} + ({hi} - {lo}) * (i + 0.5) / {}", a.size),
-            format!("t = (x - {lo}) / ({hi} - {lo}); sample at t directly (texel centres hold the values)"),
+            format!("{pi} = {lo} + ({hi} - {lo}) * (i + 0.5) / {}", a.size),
+            format!("t = ({p} - {lo}) / ({hi} - {lo}); sample at t directly (texel centres hold the values)"),
         ),
         Convention::Endpoints => (
-            format!("x_i = {lo} + ({hi} - {lo}) * i / ({} - 1)", a.size),
+            format!("{pi} = {lo} + ({hi} - {lo}) * i / ({} - 1)", a.size),
             format!(
-                "t = (x - {lo}) / ({hi} - {lo}); sample at (0.5 + t * ({n} - 1)) / {n} (half-texel remap: the range ends are texel centres)",
+                "t = ({p} - {lo}) / ({hi} - {lo}); sample at (0.5 + t * ({n} - 1)) / {n} (half-texel remap: the range ends are texel centres)",
                 n = a.size
             ),
         ),
     };
+    if !linear {
+        let inverse = a.warp.inverse_formula().replace('p', "p_i");
+        texel = format!("{texel}; x_i = {}", inverse.trim_start_matches("x = "));
+        remap = format!("{} with x clamped to [0, 1]; {remap}", a.warp.formula());
+    }
+    if let Some([c0, c1]) = a.clamp {
+        texel = format!("{texel}; the texel holds the value at clamp(x_i, {c0}, {c1})");
+    }
     let mut v = json!({
         "name": a.name,
         "texture_axis": texture_axis(k),
@@ -110,6 +137,19 @@ pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
         "shader_texture_coordinate": remap,
         "coordinates": a.coords(),
     });
+    if !linear {
+        v["warp"] = json!({
+            "name": a.warp.name(),
+            "parameter": a.warp.formula(),
+            "coordinate": a.warp.inverse_formula(),
+        });
+    }
+    if let Some(c) = a.clamp {
+        // `coordinates` are where the texels were evaluated; these, where they sit
+        v["clamp"] = json!(c);
+        v["nominal_coordinates"] =
+            json!((0..a.size).map(|i| a.nominal_coord(i)).collect::<Vec<_>>());
+    }
     if let Quantity::Roughness(q) = a.quantity {
         v["alpha_mapping"] = json!(q.mapping());
         v["alpha"] = json!((0..a.size)
@@ -363,18 +403,23 @@ pub fn header_attributes(preset: &str, table: &PresetTable, lut: &Lut) -> Vec<(S
         ("scale".to_string(), format!("{}", table.scale)),
     ];
     for (k, a) in lut.axes.iter().enumerate() {
-        v.push((
-            format!("axis{k}"),
-            format!(
-                "{} {} {} [{}, {}] {} texels",
-                a.name,
-                quantity_name(a),
-                a.convention.name(),
-                a.range[0],
-                a.range[1],
-                a.size
-            ),
-        ));
+        let mut text = format!(
+            "{} {} {} [{}, {}] {} texels",
+            a.name,
+            quantity_name(a),
+            a.convention.name(),
+            a.range[0],
+            a.range[1],
+            a.size
+        );
+        // (only when set: linear unclamped axes keep their attribute)
+        if a.warp != Warp::Linear {
+            text.push_str(&format!(" warp {}", a.warp.name()));
+        }
+        if let Some([c0, c1]) = a.clamp {
+            text.push_str(&format!(" clamp [{c0}, {c1}]"));
+        }
+        v.push((format!("axis{k}"), text));
     }
     v
 }

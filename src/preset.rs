@@ -3,7 +3,7 @@
 //! wrong types are errors that name the field's path, and every value is checked against
 //! what is accepted before anything is baked.
 
-use crate::lut::{Axis, Convention, Quantity};
+use crate::lut::{Axis, Convention, Lut, Quantity};
 use crate::model::{Fresnel, FresnelQuantity, Masking, NdfKind, RoughnessQuantity};
 use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 use serde::Deserialize;
@@ -173,9 +173,59 @@ pub struct PresetTable {
     /// The engine the table is baked for (`engine`; recorded in the sidecar and, when set,
     /// the input hash): `bake` warns about what does not work there ([`crate::engine`]).
     pub engine: Option<Engine>,
+    /// The order the axes are stored in (`axis_order`), as indices into the kind's axes
+    /// ([`crate::table::TableKind::axis_names`]): stored axis k (texture u, v, w) is the
+    /// kind's axis `order[k]`. `None`: the kind's order. Engines differ (Cycles and three.js
+    /// put roughness along u, Filament n·v).
+    pub axis_order: Option<Vec<usize>>,
 }
 
 impl PresetTable {
+    /// The baked table (in the kind's axis order) in its stored order.
+    pub fn stored(&self, lut: Lut) -> Lut {
+        match &self.axis_order {
+            Some(order) => lut.permuted(order),
+            None => lut,
+        }
+    }
+
+    /// The axes in their stored order.
+    pub fn stored_axes(&self) -> Vec<Axis> {
+        match &self.axis_order {
+            Some(order) => order.iter().map(|&o| self.spec.axes[o].clone()).collect(),
+            None => self.spec.axes.clone(),
+        }
+    }
+
+    /// Physical coordinates given in the stored axis order (`x[k]` on stored axis k), in the
+    /// kind's order, as [`crate::readback::exact_at`] takes them.
+    pub fn to_kind_order(&self, x: &[f64]) -> Vec<f64> {
+        match &self.axis_order {
+            Some(order) => {
+                let mut out = vec![0.0; x.len()];
+                for (k, &o) in order.iter().enumerate() {
+                    out[o] = x[k];
+                }
+                out
+            }
+            None => x.to_vec(),
+        }
+    }
+
+    /// Texel indices given in the stored axis order, in the kind's order.
+    pub fn texel_to_kind_order(&self, idx: [usize; 3]) -> [usize; 3] {
+        match &self.axis_order {
+            Some(order) => {
+                let mut out = [0; 3];
+                for (k, &o) in order.iter().enumerate() {
+                    out[o] = idx[k];
+                }
+                out
+            }
+            None => idx,
+        }
+    }
+
     /// How many of the table's axes (the first ones) a texture unit filters: all of them,
     /// but the slices of a 3D table stored as a 2D array, which its shader blends itself.
     pub fn hardware_filtered_axes(&self) -> usize {
@@ -241,6 +291,8 @@ struct RawTable {
     accept_error_estimate: Option<f64>,
     #[serde(default)]
     engine: Option<Engine>,
+    #[serde(default)]
+    axis_order: Option<Vec<String>>,
 }
 
 #[derive(Deserialize)]
@@ -323,6 +375,10 @@ struct RawAxis {
     convention: Option<Convention>,
     #[serde(default)]
     quantity: Option<RawQuantity>,
+    #[serde(default)]
+    warp: Option<crate::lut::Warp>,
+    #[serde(default)]
+    clamp: Option<Vec<f64>>,
 }
 
 /// An axis quantity as written in a preset: a roughness quantity or a Fresnel quantity.
@@ -500,6 +556,44 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         if t.layout_3d.is_some() && spec.axes.len() != 3 {
             return Err(field(at("layout_3d"), "applies to 3D tables only".into()));
         }
+        let axis_order = match &t.axis_order {
+            None => None,
+            Some(names) => {
+                let kind_axes = spec.kind.axis_names();
+                let mut order = Vec::new();
+                for (k, n) in names.iter().enumerate() {
+                    let Some(o) = kind_axes.iter().position(|a| a == n) else {
+                        return Err(field(
+                            at(&format!("axis_order[{k}]")),
+                            format!(
+                                "{n:?} is not an axis of a {} table (its axes: {})",
+                                spec.kind.name(),
+                                kind_axes.join(", ")
+                            ),
+                        ));
+                    };
+                    if order.contains(&o) {
+                        return Err(field(
+                            at(&format!("axis_order[{k}]")),
+                            format!("{n:?} is listed twice; list each axis once"),
+                        ));
+                    }
+                    order.push(o);
+                }
+                if order.len() != kind_axes.len() {
+                    return Err(field(
+                        at("axis_order"),
+                        format!(
+                            "must list every axis of a {} table once, in the order stored (texture u first): {}",
+                            spec.kind.name(),
+                            kind_axes.join(", ")
+                        ),
+                    ));
+                }
+                // (the kind's own order is no reordering: the same table, the same hash)
+                (order.iter().enumerate().any(|(k, &o)| k != o)).then_some(order)
+            }
+        };
         tables.push(PresetTable {
             spec,
             formats,
@@ -507,6 +601,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             layout_3d: t.layout_3d.unwrap_or(Layout3d::Volume),
             accept_error_estimate: t.accept_error_estimate,
             engine: t.engine,
+            axis_order,
         });
     }
     Ok(Preset {
@@ -789,12 +884,24 @@ fn table_spec(
                 ))
             }
         };
+        let clamp = match raw.clamp.as_deref() {
+            None => None,
+            Some(&[lo, hi]) => Some([lo, hi]),
+            Some(r) => {
+                return Err((
+                    format!("axes.{an}.clamp"),
+                    format!("must be two numbers [lo, hi], got {} numbers", r.len()),
+                ))
+            }
+        };
         out_axes.push(Axis {
             name: an.to_string(),
             quantity,
             size: raw.size,
             range,
             convention: raw.convention.unwrap_or(Convention::Centers),
+            warp: raw.warp.unwrap_or_default(),
+            clamp,
         });
     }
     let extra = axes.remaining();

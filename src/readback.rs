@@ -239,6 +239,8 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
         model.insert("diffuse".into(), d.clone());
     }
     let mut axes = Map::new();
+    // the stored order (the preset's axis_order, which the kind's own order leaves unset)
+    let mut order = Vec::new();
     for a in need(&["axes"])?
         .as_array()
         .ok_or("the sidecar's axes is not a list")?
@@ -256,6 +258,17 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
                     .ok_or_else(|| format!("axis {an} lacks {k}"))?,
             );
         }
+        if let Some(w) = a.get("warp") {
+            o.insert(
+                "warp".into(),
+                w.get("name")
+                    .cloned()
+                    .ok_or_else(|| format!("axis {an}'s warp lacks its name"))?,
+            );
+        }
+        if let Some(c) = a.get("clamp") {
+            o.insert("clamp".into(), c.clone());
+        }
         if let Some(q) = a.get("quantity").and_then(Value::as_str).and_then(|q| {
             q.strip_prefix("roughness:")
                 .or_else(|| q.strip_prefix("fresnel:"))
@@ -263,6 +276,7 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
             o.insert("quantity".into(), json!(q));
         }
         axes.insert(an.into(), Value::Object(o));
+        order.push(json!(an));
     }
     let mut t = Map::new();
     t.insert("name".into(), name);
@@ -291,6 +305,7 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(e) = get(&["engine", "name"]) {
         t.insert("engine".into(), e.clone());
     }
+    t.insert("axis_order".into(), Value::Array(order));
     if axes.len() == 3 {
         if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
             t.insert("layout_3d".into(), l.clone());
@@ -312,14 +327,35 @@ fn generic_axes(sizes: &[usize]) -> Vec<Axis> {
             size: n,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         })
         .collect()
 }
 
-/// Parses our EXR `axisK` attribute: `name quantity convention [lo, hi] N texels`.
+/// Parses our EXR `axisK` attribute: `name quantity convention [lo, hi] N texels`, then
+/// `warp NAME` and `clamp [a, b]` where set.
 fn parse_axis_attribute(s: &str) -> Option<Axis> {
     let w: Vec<&str> = s.split_whitespace().collect();
-    if w.len() != 7 || w[6] != "texels" {
+    if w.len() < 7 || w[6] != "texels" {
+        return None;
+    }
+    let mut rest = &w[7..];
+    let mut warp = crate::lut::Warp::Linear;
+    if let ["warp", name, tail @ ..] = rest {
+        warp = crate::lut::Warp::ALL
+            .into_iter()
+            .find(|x| x.name() == *name)?;
+        rest = tail;
+    }
+    let mut clamp = None;
+    if let ["clamp", a, b, tail @ ..] = rest {
+        let a: f64 = a.strip_prefix('[')?.strip_suffix(',')?.parse().ok()?;
+        let b: f64 = b.strip_suffix(']')?.parse().ok()?;
+        clamp = Some([a, b]);
+        rest = tail;
+    }
+    if !rest.is_empty() {
         return None;
     }
     let quantity = if w[1] == "cosine" {
@@ -341,6 +377,8 @@ fn parse_axis_attribute(s: &str) -> Option<Axis> {
         size: w[5].parse().ok()?,
         range: [lo, hi],
         convention,
+        warp,
+        clamp,
     })
 }
 
@@ -382,7 +420,7 @@ fn read_exr(
         )));
     }
     let (axes, chans) = match table {
-        Some(t) => (t.spec.axes.clone(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
         None => {
             let mut axes = Vec::new();
             for k in 0..3 {
@@ -623,7 +661,7 @@ fn read_ktx2(
         })
         .collect();
     let (axes, chans) = match table {
-        Some(t) => (t.spec.axes.clone(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
         None => {
             let sizes: Vec<usize> = if d > 1 {
                 vec![w, h, d]
@@ -725,9 +763,13 @@ pub fn exact_at(
     let mut spec = table.clone();
     spec.tolerance = tol;
     for (a, &v) in spec.axes.iter_mut().zip(x) {
+        // the table holds f(clamp(x)) (lut::Axis): the exact value is there
+        let v = a.clamped(v);
         a.size = 1;
         a.range = [v, v];
         a.convention = Convention::Centers;
+        a.warp = crate::lut::Warp::Linear;
+        a.clamp = None;
     }
     // the spec's messages speak of texels and conventions; here there is one point
     spec.validate().map_err(|e| {
@@ -739,12 +781,16 @@ pub fn exact_at(
             .next()
             .unwrap_or("")
             .replace(": texel 0 is at", ": the point is at")
+            .replace(": a texel is at", ": the point is at")
             .replace("every texel needs", "the model needs")
             .replace("a texel at cosine 0", "cosine 0")
             .replace("start the range at", "give a cosine of");
         format!("no exact value there: {e}")
     })?;
     use crate::table::{albedo, dfg, local, TableKind};
+    if let Some(v) = crate::table::smooth_limit_at(&spec, [0, 0, 0]) {
+        return Ok(v);
+    }
     let f = match spec.kind {
         TableKind::Ndf | TableKind::G1 | TableKind::G2 | TableKind::Vgroove => {
             local::texel_fn(&spec)

@@ -61,6 +61,8 @@ fn cos_axis(name: &str, size: usize, range: [f64; 2], convention: Convention) ->
         size,
         range,
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 
@@ -71,6 +73,8 @@ fn rough_axis(q: RoughnessQuantity, size: usize, range: [f64; 2], convention: Co
         size,
         range,
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

@@ -233,6 +233,8 @@ fn axis(name: &str, q: Quantity, size: usize, range: [f64; 2], c: Convention) ->
         size,
         range,
         convention: c,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

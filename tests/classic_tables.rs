@@ -25,6 +25,8 @@ fn axis(name: &str, q: Quantity, size: usize, range: [f64; 2], c: Convention) ->
         size,
         range,
         convention: c,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

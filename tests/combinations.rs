@@ -32,6 +32,8 @@ fn axes(kind: TableKind, n: usize, q: RoughnessQuantity) -> Vec<Axis> {
                 size: n,
                 range,
                 convention: Convention::Centers,
+                warp: Default::default(),
+                clamp: None,
             }
         })
         .collect()
@@ -177,6 +179,8 @@ fn edge_axes(kind: TableKind, q: RoughnessQuantity) -> Vec<Axis> {
                 size: 2,
                 range,
                 convention: Convention::Endpoints,
+                warp: Default::default(),
+                clamp: None,
             }
         })
         .collect()

@@ -24,6 +24,8 @@ fn cosine(name: &str, size: usize, convention: Convention) -> Axis {
         size,
         range: [0.0, 1.0],
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 
@@ -41,6 +43,8 @@ fn roughness(size: usize, convention: Convention) -> Axis {
             1.0,
         ],
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 
@@ -114,6 +118,7 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         layout_3d: Layout3d::Volume,
         accept_error_estimate: None,
         engine: None,
+        axis_order: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((

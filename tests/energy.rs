@@ -27,6 +27,8 @@ fn axis(name: &str, quantity: Quantity, size: usize, range: [f64; 2], c: Convent
         size,
         range,
         convention: c,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

@@ -57,6 +57,8 @@ fn filament_dfg_table_matches_adaptive_at_every_texel() {
             size: n,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         },
         Axis {
             name: "roughness".into(),
@@ -64,6 +66,8 @@ fn filament_dfg_table_matches_adaptive_at_every_texel() {
             size: n,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         },
     ];
     let t = TableSpec {

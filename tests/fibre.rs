@@ -173,6 +173,8 @@ fn table(
         size,
         range,
         convention,
+        warp: Default::default(),
+        clamp: None,
     };
     TableSpec {
         name: "fibre".into(),

@@ -49,6 +49,8 @@ fn axis(name: &str, size: usize, convention: Convention) -> Axis {
         size,
         range: [0.0, 1.0],
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

@@ -33,6 +33,8 @@ fn axis(name: &str, size: usize, range: [f64; 2], convention: Convention) -> Axi
         size,
         range,
         convention,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 

@@ -81,6 +81,8 @@ fn cos_axis(name: &str, x: f64) -> Axis {
         size: 1,
         range: [x, x],
         convention: Convention::Centers,
+        warp: Default::default(),
+        clamp: None,
     }
 }
 
@@ -203,6 +205,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         size: 1,
         range: [r, r],
         convention: Convention::Centers,
+        warp: Default::default(),
+        clamp: None,
     };
     let fresnel = match a.f0 {
         Some(f0) => Fresnel::Schlick { f0 },

@@ -64,12 +64,13 @@ fn axis_line(a: &crate::lut::Axis) -> String {
         }
     };
     format!(
-        "{} — {q}, {} texels over [{}, {}], {}",
+        "{} — {q}, {} texels over [{}, {}], {}{}",
         a.name,
         a.size,
         a.range[0],
         a.range[1],
-        a.convention.name()
+        a.convention.name(),
+        a.spacing_note()
     )
 }
 
@@ -96,6 +97,7 @@ pub fn run(a: InspectArgs) -> Result<(), CliError> {
             "model": rb.table.as_ref().map(|t| crate::meta::model_summary(&t.spec)),
             "axes": rb.lut.as_ref().map(|l| l.axes.iter().map(|x| json!({
                 "name": x.name, "size": x.size, "range": x.range, "convention": x.convention.name(),
+                "warp": x.warp.name(), "clamp": x.clamp,
             })).collect::<Vec<_>>()),
             "channels": s(&["channels"]),
             "reconstruction": s(&["reconstruction"]),

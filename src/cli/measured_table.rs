@@ -45,6 +45,8 @@ pub fn files(
         size: rows.len(),
         range: [0.0, 1.0],
         convention: Convention::Centers,
+        warp: Default::default(),
+        clamp: None,
     };
     let names = ["R", "G", "B"];
     let channels: Vec<Channel> = names

@@ -119,7 +119,11 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     // beyond the edge texels the GPU reads the edge texel (clamp-to-edge): where the exact
     // value has no meaning at `x` (a cosine above 1), it is given where the GPU reads
     let mut exact_x = x.clone();
-    let (exact, err) = match crate::readback::exact_at(&table.spec, &x, EXACT_TOLERANCE) {
+    let (exact, err) = match crate::readback::exact_at(
+        &table.spec,
+        &table.to_kind_order(&x),
+        EXACT_TOLERANCE,
+    ) {
         Ok(r) => r,
         Err(e) => {
             for (v, ax) in exact_x.iter_mut().zip(&lut.axes) {
@@ -129,8 +133,12 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             if exact_x == x {
                 return Err(CliError::input(format!("--at {}: {e}", a.at)));
             }
-            let r = crate::readback::exact_at(&table.spec, &exact_x, EXACT_TOLERANCE)
-                .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
+            let r = crate::readback::exact_at(
+                &table.spec,
+                &table.to_kind_order(&exact_x),
+                EXACT_TOLERANCE,
+            )
+            .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
             notes.push(format!(
                 "{e} at the given point: the exact value is given where the GPU reads, at the edge texels' coordinates ({})",
                 names
@@ -162,11 +170,15 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         lut.axes
             .iter()
             .zip(&x)
-            .filter(|(ax, v)| **v < ax.range[0] || **v > ax.range[1])
+            .filter(|(ax, v)| {
+                let [lo, hi] = ax.coordinate_span();
+                **v < lo || **v > hi
+            })
             .map(|(ax, v)| {
+                let [lo, hi] = ax.coordinate_span();
                 format!(
-                    "{}={v} lies outside the axis range [{}, {}]: the GPU clamps to the edge",
-                    ax.name, ax.range[0], ax.range[1]
+                    "{}={v} lies outside the axis range [{lo}, {hi}]: the GPU clamps to the edge",
+                    ax.name
                 )
             }),
     );

@@ -3,7 +3,6 @@
 
 use super::CliError;
 use crate::lut::Lut;
-use crate::table::TableSpec;
 use rayon::prelude::*;
 use serde_json::json;
 use std::collections::BTreeSet;
@@ -105,7 +104,7 @@ pub fn all_texels(lut: &Lut) -> Vec<[usize; 3]> {
 /// recomputed from `spec` at [`REFERENCE_TOLERANCE`].
 /// `None` when `deadline` passed first (checked before every texel).
 pub fn verify_texels(
-    spec: &TableSpec,
+    table: &crate::preset::PresetTable,
     lut: &Lut,
     scale: f64,
     texels: &[[usize; 3]],
@@ -126,7 +125,8 @@ pub fn verify_texels(
                 .enumerate()
                 .map(|(k, a)| a.coord(idx[k]))
                 .collect();
-            crate::readback::exact_at(spec, &x, REFERENCE_TOLERANCE).map(|r| r.0)
+            crate::readback::exact_at(&table.spec, &table.to_kind_order(&x), REFERENCE_TOLERANCE)
+                .map(|r| r.0)
         })
         .collect();
     if stopped.into_inner() {
@@ -172,7 +172,7 @@ pub fn cell_middle(lut: &Lut, idx: &[usize; 3]) -> Vec<f64> {
 /// `texels`, the ideal lookup of `lut` (stored values divided by `scale`) against the value
 /// recomputed from `spec` at [`REFERENCE_TOLERANCE`]. `None` when `deadline` passed first.
 pub fn verify_lookups(
-    spec: &TableSpec,
+    table: &crate::preset::PresetTable,
     lut: &Lut,
     scale: f64,
     texels: &[[usize; 3]],
@@ -190,7 +190,8 @@ pub fn verify_lookups(
                 stopped.store(true, Relaxed);
                 return Ok(Vec::new());
             }
-            crate::readback::exact_at(spec, x, REFERENCE_TOLERANCE).map(|r| r.0)
+            crate::readback::exact_at(&table.spec, &table.to_kind_order(x), REFERENCE_TOLERANCE)
+                .map(|r| r.0)
         })
         .collect();
     if stopped.into_inner() {
@@ -357,6 +358,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     scale: 1.0,
                     ..t.clone()
                 };
+                let lut = t.stored(lut);
                 let stated = crate::meta::lookup_error(&values, &lut);
                 jobs.push((
                     format!("{}/{}", preset.name, t.spec.name),
@@ -378,10 +380,10 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             sample_texels(lut)
         };
         let stopped = || super::guards::stopped("this verify", deadline.as_ref().expect("set"));
-        let (n, errs) = verify_texels(spec, lut, *scale, &texels, deadline.as_ref())
+        let (n, errs) = verify_texels(table, lut, *scale, &texels, deadline.as_ref())
             .map_err(CliError::input)?
             .ok_or_else(stopped)?;
-        let (cells, lookups) = verify_lookups(spec, lut, *scale, &texels, deadline.as_ref())
+        let (cells, lookups) = verify_lookups(table, lut, *scale, &texels, deadline.as_ref())
             .map_err(CliError::input)?
             .ok_or_else(stopped)?;
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;

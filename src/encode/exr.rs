@@ -497,6 +497,8 @@ mod tests {
             size,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         }
     }
 

@@ -2,8 +2,9 @@
 //! coordinates (`n·v`, roughness, … in each axis' own quantity and convention) and return the
 //! table's channels, with the exact texture-coordinate transform of every axis built in.
 //!
-//! Per axis `k` with range `[lo, hi]` and `N` texels the snippets compute, in f32,
-//! `t = clamp((x − lo)/(hi − lo), 0, 1)` and sample at `s = t` (centers convention) or
+//! Per axis `k` with range `[lo, hi]` of its parameter `p` and `N` texels the snippets
+//! compute, in f32, `p = x` (linear axes), `√(1 − x)`, `√x` or `acos x` (warped cosine axes,
+//! `x` first clamped to [0, 1]), `t = clamp((p − lo)/(hi − lo), 0, 1)` and sample at `s = t` (centers convention) or
 //! `s = (0.5 + t·(N − 1))/N` (endpoints convention); an axis of a single texel is sampled at
 //! `s = 0.5`. [`texture_coordinates`] computes the same in f64, for tests and for engines that
 //! compute coordinates on the CPU.
@@ -37,7 +38,7 @@ use super::source::{
     attribute_lines, axis_lines, check_table, comment_lines, identifier, scale_attribute,
 };
 use super::{EncodeError, Encoder};
-use crate::lut::{Axis, Convention, Lut};
+use crate::lut::{Axis, Convention, Lut, Warp};
 use std::fmt::Write as _;
 
 /// A shading language.
@@ -84,8 +85,7 @@ pub fn texture_coordinates(lut: &Lut, x: &[f64]) -> Vec<f64> {
             if a.size == 1 {
                 return 0.5;
             }
-            let [lo, hi] = a.range;
-            let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+            let t = a.normalized(x);
             match a.convention {
                 Convention::Centers => t,
                 Convention::Endpoints => (0.5 + t * (a.size - 1) as f64) / a.size as f64,
@@ -360,10 +360,31 @@ impl Gen<'_> {
         }
         let [lo, hi] = a.range;
         let (lo, hi) = (float_literal(lo), float_literal(hi));
-        let mut s = self.local(
+        // the axis' parameter p = warp(x), x first clamped into the warp's domain
+        let mut s = String::new();
+        let p = match a.warp {
+            Warp::Linear => x.clone(),
+            w => {
+                let xc = match w.coordinate_domain() {
+                    Some([dlo, dhi]) => {
+                        format!("clamp({x}, {}, {})", float_literal(dlo), float_literal(dhi))
+                    }
+                    None => x.clone(),
+                };
+                let expr = match w {
+                    Warp::SqrtOneMinus => format!("sqrt(1.0 - {xc})"),
+                    Warp::Sqrt => format!("sqrt({xc})"),
+                    Warp::Acos => format!("acos({xc})"),
+                    Warp::Linear => unreachable!("handled above"),
+                };
+                s.push_str(&self.local(&format!("p{k}_"), &expr));
+                format!("p{k}_")
+            }
+        };
+        s.push_str(&self.local(
             &format!("t{k}_"),
-            &format!("clamp(({x} - {lo}) / ({hi} - {lo}), 0.0, 1.0)"),
-        );
+            &format!("clamp(({p} - {lo}) / ({hi} - {lo}), 0.0, 1.0)"),
+        ));
         let expr = match a.convention {
             Convention::Centers => format!("t{k}_"),
             Convention::Endpoints => format!(
@@ -533,6 +554,8 @@ mod tests {
             size,
             range,
             convention,
+            warp: Default::default(),
+            clamp: None,
         }
     }
 

@@ -20,7 +20,7 @@
 //! from what the attributes and channel meanings contain, and depends only on the inputs.
 
 use super::{EncodeError, Encoder};
-use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::lut::{Axis, Convention, Lut, Quantity, Warp};
 use half::f16;
 use std::fmt::Write as _;
 
@@ -365,12 +365,28 @@ pub(crate) fn axis_lines(k: usize, a: &Axis) -> Vec<String> {
     let n = a.size;
     let texture_axis = ["u", "v", "w (slice)"][k.min(2)];
     let letter = ["x", "y", "z"][k.min(2)];
-    let mut v = vec![format!(
+    let linear = a.warp == Warp::Linear;
+    let mut head = format!(
         "  {letter} (axis {k}, texture {texture_axis}): {} = {}, range [{lo}, {hi}], {n} texels, convention {}",
         a.name,
         quantity_name(a),
         a.convention.name()
-    )];
+    );
+    if !linear {
+        // (the range is the parameter's)
+        head.push_str(&format!(
+            ", warp {}: {} with x = {}, the range is p's",
+            a.warp.name(),
+            a.warp.formula(),
+            a.name
+        ));
+    }
+    if let Some([c0, c1]) = a.clamp {
+        head.push_str(&format!(", values at {} clamped to [{c0}, {c1}]", a.name));
+    }
+    let mut v = vec![head];
+    // the name of what is uniform in the texels: the coordinate, or the warp's parameter
+    let p = if linear { a.name.as_str() } else { "p" };
     let (texel, remap) = if n == 1 {
         (
             format!("the single texel holds {} = {}", a.name, a.coord(0)),
@@ -379,25 +395,30 @@ pub(crate) fn axis_lines(k: usize, a: &Axis) -> Vec<String> {
     } else {
         match a.convention {
             Convention::Centers => (
-                format!(
-                    "texel i holds {} = {lo} + ({hi} - {lo}) * (i + 0.5) / {n}",
-                    a.name
-                ),
+                format!("texel i holds {p} = {lo} + ({hi} - {lo}) * (i + 0.5) / {n}"),
                 "sample at t directly (texel centres hold the values)".to_string(),
             ),
             Convention::Endpoints => (
-                format!(
-                    "texel i holds {} = {lo} + ({hi} - {lo}) * i / ({n} - 1)",
-                    a.name
-                ),
+                format!("texel i holds {p} = {lo} + ({hi} - {lo}) * i / ({n} - 1)"),
                 format!("sample at (0.5 + t * ({n} - 1)) / {n} (the range ends are texel centres)"),
             ),
         }
     };
     v.push(format!("      {texel}"));
+    if !linear {
+        v.push(format!(
+            "      {} = {} (the inverse of the warp)",
+            a.name,
+            a.warp.inverse_formula().trim_start_matches("x = ")
+        ));
+        v.push(format!(
+            "      p = {} with x = {} clamped to [0, 1]",
+            a.warp.formula().trim_start_matches("p = "),
+            a.name
+        ));
+    }
     v.push(format!(
-        "      t = clamp(({} - {lo}) / ({hi} - {lo}), 0, 1); {remap}",
-        a.name
+        "      t = clamp(({p} - {lo}) / ({hi} - {lo}), 0, 1); {remap}"
     ));
     v
 }
@@ -552,6 +573,8 @@ mod tests {
                 size: values.len(),
                 range: [0.0, 1.0],
                 convention: Convention::Centers,
+                warp: Default::default(),
+                clamp: None,
             }],
             channels: vec![Channel {
                 name: "v".into(),

@@ -248,6 +248,8 @@ pub fn compare_until(
         size: n,
         range: [0.0, 1.0],
         convention: Convention::Centers,
+        warp: Default::default(),
+        clamp: None,
     };
     let names = ["R", "G", "B"];
     let diff = Lut {

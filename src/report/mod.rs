@@ -86,12 +86,13 @@ fn table_section(t: &ReportTable, out: &mut String) {
             .axes
             .iter()
             .map(|a| format!(
-                "{} ({} texels, [{}, {}], {})",
+                "{} ({} texels, [{}, {}], {}{})",
                 a.name,
                 a.size,
                 a.range[0],
                 a.range[1],
-                a.convention.name()
+                a.convention.name(),
+                a.spacing_note()
             ))
             .collect::<Vec<_>>()
             .join("; "))
@@ -110,7 +111,10 @@ fn table_section(t: &ReportTable, out: &mut String) {
         let mu_axis = &lut.axes[0];
         let n = 64;
         let mus: Vec<f64> = (0..=n)
-            .map(|i| mu_axis.range[0] + (mu_axis.range[1] - mu_axis.range[0]) * i as f64 / n as f64)
+            .map(|i| {
+                let [lo, hi] = mu_axis.coordinate_span();
+                lo + (hi - lo) * i as f64 / n as f64
+            })
             .collect();
         let rl = roughness_label(spec);
         let mut curves = Vec::new();
@@ -236,7 +240,8 @@ fn karis_section(t: &ReportTable, out: &mut String) {
         let mut ka = Vec::new();
         let mut kb = Vec::new();
         for i in 0..=64 {
-            let mu = mu_axis.range[0] + (mu_axis.range[1] - mu_axis.range[0]) * i as f64 / 64.0;
+            let [lo, hi] = mu_axis.coordinate_span();
+            let mu = lo + (hi - lo) * i as f64 / 64.0;
             let (a, b) = ab(mu, *r);
             let (xa, xb) = env_brdf_approx(perceptual(*r), mu);
             max_a = max_a.max((a - xa).abs());

@@ -868,6 +868,8 @@ mod tests {
                     size: nx,
                     range: [0.0, 1.0],
                     convention: Convention::Centers,
+                    warp: Default::default(),
+                    clamp: None,
                 },
                 Axis {
                     name: "roughness".into(),
@@ -875,6 +877,8 @@ mod tests {
                     size: ny,
                     range: roughness,
                     convention: Convention::Endpoints,
+                    warp: Default::default(),
+                    clamp: None,
                 },
             ],
             dfg_layout: Some(if cloth {

@@ -106,7 +106,7 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
                     m.fresnel.name()
                 ));
             }
-            if spec.axes[0].coord(0) <= 0.0 {
+            if spec.axes[0].coords().iter().any(|&c| c <= 0.0) {
                 return Err(
                     "axes.cos_theta_v: a texel at cosine 0 is not allowed for a dielectric-btdf table (R and T \
                      divide by n.v); use the centers convention or a range starting above 0"

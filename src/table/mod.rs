@@ -14,6 +14,7 @@ pub mod dielectric;
 pub mod energy;
 pub mod local;
 pub mod methods;
+mod smooth;
 pub mod spec;
 pub mod texel;
 mod validate;
@@ -167,6 +168,9 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
         name: spec.name.clone(),
         msg,
     })?;
+    if let Some((k, zero, rest)) = smooth_texels(spec) {
+        return bake_with_smooth(spec, opts, k, zero, rest);
+    }
     let limit = opts
         .accept_error_estimate
         .unwrap_or(spec.tolerance)
@@ -377,6 +381,133 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
         data,
         error_estimate: err,
         evaluations: evals,
+    })
+}
+
+/// The values and error estimates of texel `idx` if it lies at α = 0, where the table holds
+/// the smooth-surface limit in closed form (`smooth.rs`); `None` for any other texel.
+pub fn smooth_limit_at(spec: &TableSpec, idx: [usize; 3]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let (k, zero, _) = smooth_texels(spec)?;
+    zero.contains(&idx[k]).then(|| {
+        let t = smooth::texel(spec, idx);
+        (t.value, t.error)
+    })
+}
+
+/// The roughness texels at α = 0 (the smooth limit, [`smooth`]), if any: the roughness
+/// axis' index, the range of those texels and the range of the others (validation has
+/// made them one run at an end of the axis).
+fn smooth_texels(
+    spec: &TableSpec,
+) -> Option<(usize, std::ops::Range<usize>, std::ops::Range<usize>)> {
+    let k = spec
+        .axes
+        .iter()
+        .position(|a| matches!(a.quantity, crate::lut::Quantity::Roughness(_)))?;
+    let a = &spec.axes[k];
+    let zero = |i: usize| a.alpha(i) == Some(0.0);
+    let n = a.size;
+    let head = (0..n).take_while(|&i| zero(i)).count();
+    if head > 0 {
+        return Some((k, 0..head, head..n));
+    }
+    let tail = (0..n).rev().take_while(|&i| zero(i)).count();
+    (tail > 0).then(|| (k, n - tail..n, 0..n - tail))
+}
+
+/// The texels `window` of axis `a` as an axis of their own: the same parameters (up to
+/// rounding in the last place), warp and clamp.
+fn window_axis(a: &crate::lut::Axis, window: std::ops::Range<usize>) -> crate::lut::Axis {
+    use crate::lut::Convention;
+    let mut b = a.clone();
+    let (s, e) = (window.start, window.end);
+    b.size = e - s;
+    if b.size == 1 {
+        let p = a.parameter(s);
+        b.range = [p, p];
+        b.convention = Convention::Centers;
+        return b;
+    }
+    b.range = match a.convention {
+        Convention::Endpoints => [a.parameter(s), a.parameter(e - 1)],
+        Convention::Centers => {
+            let [lo, hi] = a.range;
+            let n = a.size as f64;
+            [lo + (hi - lo) * s as f64 / n, lo + (hi - lo) * e as f64 / n]
+        }
+    };
+    b
+}
+
+/// [`bake_with`] of a table whose roughness axis `k` has texels `zero` at α = 0: the others
+/// (`rest`) are baked as a table of their own, the α = 0 texels take the smooth limit's
+/// closed form ([`smooth::texel`]).
+fn bake_with_smooth(
+    spec: &TableSpec,
+    opts: &BakeOptions,
+    k: usize,
+    zero: std::ops::Range<usize>,
+    rest: std::ops::Range<usize>,
+) -> Result<Lut, BakeError> {
+    let channels = channels(spec);
+    let nc = channels.len();
+    let dims = [
+        spec.axes.first().map_or(1, |a| a.size),
+        spec.axes.get(1).map_or(1, |a| a.size),
+        spec.axes.get(2).map_or(1, |a| a.size),
+    ];
+    let sub = if rest.is_empty() {
+        None
+    } else {
+        let mut s = spec.clone();
+        s.axes[k] = window_axis(&spec.axes[k], rest.clone());
+        Some(bake_with(&s, opts)?)
+    };
+    let mut data = Vec::with_capacity(dims.iter().product::<usize>() * nc);
+    let mut err = sub
+        .as_ref()
+        .map_or(vec![0.0; nc], |l| l.error_estimate.clone());
+    for z in 0..dims[2] {
+        for y in 0..dims[1] {
+            for x in 0..dims[0] {
+                let mut idx = [x, y, z];
+                if zero.contains(&idx[k]) {
+                    let t = smooth::texel(spec, idx);
+                    for c in 0..nc {
+                        let v = t.value[c];
+                        if !v.is_finite() || !(v as f32).is_finite() {
+                            return Err(BakeError::NonFinite {
+                                name: spec.name.clone(),
+                                texel: idx,
+                                at: spec
+                                    .axes
+                                    .iter()
+                                    .enumerate()
+                                    .map(|(j, a)| (a.name.clone(), a.coord(idx[j])))
+                                    .collect(),
+                                channel: channels[c].name.clone(),
+                                value: v,
+                            });
+                        }
+                        data.push(v as f32);
+                        err[c] = err[c].max(t.error[c]);
+                    }
+                } else {
+                    let l = sub.as_ref().expect("texels beside the smooth ones");
+                    idx[k] -= rest.start;
+                    for c in 0..nc {
+                        data.push(l.texel(idx, c));
+                    }
+                }
+            }
+        }
+    }
+    Ok(Lut {
+        axes: spec.axes.clone(),
+        channels,
+        data,
+        error_estimate: err,
+        evaluations: sub.map_or(0, |l| l.evaluations),
     })
 }
 

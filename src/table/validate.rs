@@ -7,7 +7,7 @@ use super::spec::{
     DfgLayout, TableKind, TableSpec, MAX_AXIS_SIZE, MAX_TEXELS, MAX_TOLERANCE, MIN_COSINE,
     MIN_TOLERANCE,
 };
-use crate::lut::{Convention, Quantity};
+use crate::lut::{Convention, Quantity, Warp};
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, RoughnessQuantity};
 
 impl TableSpec {
@@ -48,11 +48,45 @@ impl TableSpec {
             if ax.convention == Convention::Endpoints && ax.size < 2 {
                 return Err(format!("{f}: the endpoints convention needs size >= 2"));
             }
+            if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
+                return Err(format!(
+                    "{f}.warp {:?} applies to cosine axes only; this axis is linear in its quantity",
+                    ax.warp.name()
+                ));
+            }
+            if let Some([c0, c1]) = ax.clamp {
+                if !(c0.is_finite() && c1.is_finite() && c0 <= c1) {
+                    return Err(format!(
+                        "{f}.clamp must be two finite numbers [lo, hi] with lo <= hi, got [{}, {}]",
+                        crate::numfmt::num(c0),
+                        crate::numfmt::num(c1)
+                    ));
+                }
+                if ax.quantity == Quantity::Cosine && (c0 < 0.0 || c1 > 1.0) {
+                    return Err(format!(
+                        "{f}.clamp must lie within [0, 1] (a cosine), got [{}, {}]",
+                        crate::numfmt::num(c0),
+                        crate::numfmt::num(c1)
+                    ));
+                }
+            }
+            // the smallest coordinate of a texel, where it is evaluated (warped axes may
+            // run from 1 down)
+            let first = (0..ax.size)
+                .map(|i| ax.coord(i))
+                .fold(f64::INFINITY, f64::min);
             match ax.quantity {
                 Quantity::Cosine => {
-                    if lo < 0.0 || hi > 1.0 {
+                    let [dlo, dhi] = ax.warp.parameter_domain().unwrap_or([0.0, 1.0]);
+                    if lo < dlo || hi > dhi {
+                        let what = match ax.warp {
+                            Warp::Linear => "a cosine".to_string(),
+                            w => format!("the range of the warp's parameter {}", w.formula()),
+                        };
                         return Err(format!(
-                            "{f}.range must lie within [0, 1] (a cosine), got [{lo}, {hi}]",
+                            "{f}.range must lie within [{}, {}] ({what}), got [{lo}, {hi}]",
+                            crate::numfmt::num(dlo),
+                            crate::numfmt::num(dhi),
                             lo = crate::numfmt::num(lo),
                             hi = crate::numfmt::num(hi)
                         ));
@@ -67,7 +101,7 @@ impl TableSpec {
                             | (TableKind::ClassicAlbedoAniso, _)
                             | (TableKind::Vgroove, "n_dot_h")
                     );
-                    if !zero_ok && ax.coord(0) <= 0.0 {
+                    if !zero_ok && first <= 0.0 {
                         return Err(format!(
                             "{f}: a texel at cosine 0 is not allowed for a {} table (the quantity is undefined at 0: \
                              it divides by {}); use the centers convention or a range starting above 0",
@@ -75,12 +109,12 @@ impl TableSpec {
                             if ax.name == "n_dot_h" { "n.h" } else { "n.v" }
                         ));
                     }
-                    if !zero_ok && ax.coord(0) < MIN_COSINE {
+                    if !zero_ok && first < MIN_COSINE {
                         return Err(format!(
-                            "{f}: texel 0 is at cosine {}, below the smallest accepted {} for {} tables (they divide by {}: \
+                            "{f}: a texel is at cosine {}, below the smallest accepted {} for {} tables (they divide by {}: \
                              closer to grazing its angle's tangent passes 1e12, and in f64 the integrand overflows near 1e-154); \
-                             start the range at {} or above",
-                            crate::numfmt::num(ax.coord(0)),
+                             start the range at {} or above (or clamp the axis' values)",
+                            crate::numfmt::num(first),
                             crate::numfmt::num(MIN_COSINE),
                             kind.name(),
                             if ax.name == "n_dot_h" { "n.h" } else { "n.v" },
@@ -126,13 +160,34 @@ impl TableSpec {
                             ));
                         }
                     }
+                    // α = 0 (the smooth limit, table::smooth) only as one run of texels at
+                    // an end of the axis, for the kinds and models that have the limit
+                    let zeros: Vec<usize> = (0..ax.size)
+                        .filter(|&i| q.to_alpha(ax.coord(i)) == 0.0)
+                        .collect();
+                    if let (Some(&z0), Some(&z1)) = (zeros.first(), zeros.last()) {
+                        super::smooth::supported(self).map_err(|e| {
+                            format!(
+                                "{f}: texel {z0} is at alpha = 0, but {e}: use the centers convention or a range starting above 0"
+                            )
+                        })?;
+                        if z1 - z0 + 1 != zeros.len() || (z0 != 0 && z1 != ax.size - 1) {
+                            return Err(format!(
+                                "{f}: the texels at alpha = 0 ({}) must be one run at an end of the axis",
+                                zeros.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(", ")
+                            ));
+                        }
+                    }
                     for i in 0..ax.size {
                         let x = ax.coord(i);
                         let a = q.to_alpha(x);
+                        if a == 0.0 {
+                            continue;
+                        }
                         if !(a.is_finite() && a > 0.0) {
                             return Err(format!(
-                                "{f}: texel {i} is at {} {x:e} (alpha {a:e}); every texel needs alpha > 0 \
-                                 (use the centers convention or a range starting above 0)",
+                                "{f}: texel {i} is at {} {x:e} (alpha {a:e}); every texel needs alpha >= 0 \
+                                 (use the centers convention or a range starting at 0 or above)",
                                 q.name()
                             ));
                         }

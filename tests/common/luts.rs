@@ -17,6 +17,8 @@ pub fn lut(sizes: &[usize], names: &[&str], f: impl Fn([usize; 3], usize) -> f32
             size,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         })
         .collect();
     let dim = |k: usize| sizes.get(k).copied().unwrap_or(1);

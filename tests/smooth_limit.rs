@@ -1,0 +1,334 @@
+//! α = 0 exactly (the smooth-surface limit, `table::smooth`): a roughness axis that starts
+//! at α = 0 holds the closed forms there, and the integrals at α → 0 approach them.
+//!
+//! The closed forms are written here again from their definitions (the mirror lobe: l the
+//! reflection of v, F at v·h = μ, G → 1), not taken from the library. The limit check
+//! bakes the same tables at small α with the library's quadrature: for μ away from
+//! grazing, E(μ, α) − E(μ, 0) = O(α² ln(1/α)) (the lobe's width is α, and GGX's slope
+//! distribution has a logarithmically divergent second moment; Smith's Λ ∝ α² tan²θ; the
+//! lobe's mass beyond the horizon ∝ α²), so the difference must drop ~75× from α = 3e-3 to
+//! 3e-4: the test asserts a drop of at least 30× (an O(α) error would give 10×; terms of
+//! opposite sign make the split sum's B drop by ~33× there, measured against the
+//! independent reference of tests/common/reference.rs) and a difference at α = 3e-4 of at
+//! most 1e-6.
+
+use brdfbake::lut::{Axis, Convention, Lut, Quantity};
+use brdfbake::model::{Fresnel, FresnelQuantity, Masking, NdfKind, RoughnessQuantity};
+use brdfbake::table::{bake, DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+
+fn cos_axis(name: &str, size: usize, range: [f64; 2]) -> Axis {
+    Axis::new(name, Quantity::Cosine, size, range, Convention::Centers)
+}
+
+/// A roughness (α) axis of `size` texels from 0 to 1 (endpoints), or the given α alone.
+fn alpha_axis(size: usize) -> Axis {
+    Axis::new(
+        "roughness",
+        Quantity::Roughness(RoughnessQuantity::Alpha),
+        size,
+        [0.0, 1.0],
+        Convention::Endpoints,
+    )
+}
+
+fn at_alpha(alpha: f64) -> Axis {
+    Axis::new(
+        "roughness",
+        Quantity::Roughness(RoughnessQuantity::Alpha),
+        1,
+        [alpha, alpha],
+        Convention::Centers,
+    )
+}
+
+fn model(ndf: NdfKind, masking: Masking, fresnel: Fresnel, diffuse: f64) -> ModelSpec {
+    ModelSpec {
+        ndf: Some(ndf),
+        masking,
+        fresnel,
+        diffuse_weight: diffuse,
+        classic: None,
+    }
+}
+
+fn spec(kind: TableKind, model: ModelSpec, axes: Vec<Axis>) -> TableSpec {
+    TableSpec {
+        name: "t".into(),
+        kind,
+        model,
+        axes,
+        dfg_layout: (kind == TableKind::Dfg).then_some(DfgLayout::Karis),
+        cloth: false,
+        storage: Storage::F32,
+        tolerance: 1e-9,
+    }
+}
+
+fn schlick_weight(mu: f64) -> f64 {
+    (1.0 - mu).powi(5)
+}
+
+/// The exact unpolarized Fresnel reflectance of a dielectric (Walter et al. 2007, eq. 22),
+/// 1 under total internal reflection.
+fn fresnel_dielectric(c: f64, eta: f64) -> f64 {
+    let g2 = eta * eta - 1.0 + c * c;
+    if g2 < 0.0 {
+        return 1.0;
+    }
+    let g = g2.sqrt();
+    let a = (g - c) / (g + c);
+    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    0.5 * a * a * (1.0 + b * b)
+}
+
+/// Row `j` (roughness texel) of a 2D table, channel `c`.
+fn row(l: &Lut, j: usize, c: usize) -> Vec<f64> {
+    (0..l.axes[0].size)
+        .map(|i| l.texel([i, j, 0], c) as f64)
+        .collect()
+}
+
+fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!(
+            (x - y).abs() <= tol,
+            "{what}: texel {i}: {x} against {y} (tolerance {tol})"
+        );
+    }
+}
+
+/// f32 storage rounds a value of size ≤ ~2 by at most 2^-24·2 ≈ 1.2e-7.
+const F32: f64 = 1.2e-7;
+
+#[test]
+fn the_alpha_zero_row_holds_the_closed_forms() {
+    let mus = cos_axis("cos_theta_v", 16, [0.0, 1.0]);
+    let mu: Vec<f64> = mus.coords();
+    let ggx = NdfKind::Ggx;
+    let hc = Masking::SmithHeightCorrelated;
+
+    // albedo: E = F(μ) + w_d, for each Fresnel term
+    for (fresnel, f) in [
+        (
+            Fresnel::None,
+            Box::new(|_: f64| 1.0) as Box<dyn Fn(f64) -> f64>,
+        ),
+        (
+            Fresnel::Schlick { f0: 0.04 },
+            Box::new(|m: f64| 0.04 + 0.96 * schlick_weight(m)),
+        ),
+        (
+            Fresnel::Dielectric { eta: 1.5 },
+            Box::new(|m: f64| fresnel_dielectric(m, 1.5)),
+        ),
+    ] {
+        for diffuse in [0.0, 0.5] {
+            for (ndf, masking) in [
+                (ggx, hc),
+                (ggx, Masking::SmithSeparable),
+                (NdfKind::Beckmann, hc),
+                (NdfKind::Beckmann, Masking::VGroove),
+            ] {
+                let l = bake(&spec(
+                    TableKind::Albedo,
+                    model(ndf, masking, fresnel, diffuse),
+                    vec![mus.clone(), alpha_axis(3)],
+                ))
+                .unwrap();
+                let want: Vec<f64> = mu.iter().map(|&m| f(m) + diffuse).collect();
+                close(
+                    &row(&l, 0, 0),
+                    &want,
+                    F32,
+                    &format!("albedo {fresnel:?} {ndf:?} {masking:?} w_d {diffuse}"),
+                );
+                // the other rows are the integrals, not the limit
+                assert!(row(&l, 2, 0)[8] < want[8] - 1e-3, "alpha = 1 loses energy");
+            }
+        }
+    }
+
+    // split sum, both layouts
+    let mut s = spec(
+        TableKind::Dfg,
+        model(ggx, hc, Fresnel::None, 0.0),
+        vec![mus.clone(), alpha_axis(4)],
+    );
+    let l = bake(&s).unwrap();
+    let fc: Vec<f64> = mu.iter().map(|&m| schlick_weight(m)).collect();
+    close(
+        &row(&l, 0, 0),
+        &fc.iter().map(|w| 1.0 - w).collect::<Vec<_>>(),
+        F32,
+        "Karis A",
+    );
+    close(&row(&l, 0, 1), &fc, F32, "Karis B");
+    s.dfg_layout = Some(DfgLayout::Filament);
+    let l = bake(&s).unwrap();
+    close(&row(&l, 0, 0), &fc, F32, "Filament R");
+    close(&row(&l, 0, 1), &[1.0; 16], F32, "Filament G");
+
+    // Kulla–Conty: E = 1, E_avg = 1
+    let l = bake(&spec(
+        TableKind::KullaConty,
+        model(ggx, hc, Fresnel::None, 0.0),
+        vec![mus.clone(), alpha_axis(3)],
+    ))
+    .unwrap();
+    close(&row(&l, 0, 0), &[1.0; 16], F32, "Kulla-Conty E");
+    close(&row(&l, 0, 1), &[1.0; 16], 1e-9 + F32, "Kulla-Conty E_avg");
+
+    // albedo-avg with Schlick: 2∫(F0 + (1 − F0)(1 − μ)⁵)μ dμ = F0 + (1 − F0)/21
+    let l = bake(&spec(
+        TableKind::AlbedoAvg,
+        model(ggx, hc, Fresnel::Schlick { f0: 0.2 }, 0.0),
+        vec![alpha_axis(3)],
+    ))
+    .unwrap();
+    let want = 0.2 + 0.8 / 21.0;
+    assert!(
+        (l.texel([0, 0, 0], 0) as f64 - want).abs() <= 1e-9 + F32,
+        "E_avg at alpha 0: {} against {want}",
+        l.texel([0, 0, 0], 0)
+    );
+
+    // albedo-fresnel over η, and the rough dielectric: R = F(μ; η), T = 1 − R
+    let eta = Axis::new(
+        "fresnel",
+        Quantity::Fresnel(FresnelQuantity::Eta),
+        3,
+        [1.1, 2.0],
+        Convention::Endpoints,
+    );
+    let l = bake(&spec(
+        TableKind::AlbedoFresnel,
+        model(ggx, hc, Fresnel::None, 0.0),
+        vec![mus.clone(), alpha_axis(3), eta.clone()],
+    ))
+    .unwrap();
+    for z in 0..3 {
+        let e = eta.coord(z);
+        let got: Vec<f64> = (0..16).map(|i| l.texel([i, 0, z], 0) as f64).collect();
+        let want: Vec<f64> = mu.iter().map(|&m| fresnel_dielectric(m, e)).collect();
+        close(&got, &want, F32, &format!("albedo-fresnel eta {e}"));
+    }
+    let eta_both = Axis::new(
+        "fresnel",
+        Quantity::Fresnel(FresnelQuantity::Eta),
+        2,
+        [0.7, 1.5],
+        Convention::Endpoints,
+    );
+    let l = bake(&spec(
+        TableKind::DielectricBtdf,
+        model(ggx, Masking::SmithSeparable, Fresnel::None, 0.0),
+        vec![mus.clone(), alpha_axis(3), eta_both.clone()],
+    ))
+    .unwrap();
+    for z in 0..2 {
+        let e = eta_both.coord(z);
+        let r: Vec<f64> = mu.iter().map(|&m| fresnel_dielectric(m, e)).collect();
+        let got_r: Vec<f64> = (0..16).map(|i| l.texel([i, 0, z], 0) as f64).collect();
+        let got_t: Vec<f64> = (0..16).map(|i| l.texel([i, 0, z], 1) as f64).collect();
+        close(&got_r, &r, F32, &format!("dielectric R eta {e}"));
+        close(
+            &got_t,
+            &r.iter().map(|x| 1.0 - x).collect::<Vec<_>>(),
+            F32,
+            &format!("dielectric T eta {e}"),
+        );
+    }
+
+    // Smith G1 = 1 for μ > 0 and 0 at μ = 0; G2 likewise
+    let mu0 = Axis::new(
+        "cos_theta",
+        Quantity::Cosine,
+        5,
+        [0.0, 1.0],
+        Convention::Endpoints,
+    );
+    let l = bake(&spec(
+        TableKind::G1,
+        model(ggx, Masking::SmithSeparable, Fresnel::None, 0.0),
+        vec![mu0.clone(), alpha_axis(3)],
+    ))
+    .unwrap();
+    close(&row(&l, 0, 0), &[0.0, 1.0, 1.0, 1.0, 1.0], 0.0, "G1");
+}
+
+#[test]
+fn kinds_without_a_smooth_limit_refuse_alpha_zero() {
+    let mus = cos_axis("cos_theta_h", 4, [0.0, 1.0]);
+    let e = bake(&spec(
+        TableKind::Ndf,
+        model(NdfKind::Ggx, Masking::None, Fresnel::None, 0.0),
+        vec![mus, alpha_axis(3)],
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("alpha = 0") && e.contains("Dirac delta"), "{e}");
+    let e = bake(&spec(
+        TableKind::Albedo,
+        model(NdfKind::Charlie, Masking::Ashikhmin, Fresnel::None, 0.0),
+        vec![cos_axis("cos_theta_v", 4, [0.0, 1.0]), alpha_axis(3)],
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("alpha = 0") && e.contains("charlie"), "{e}");
+}
+
+/// The integrals at small α approach the α = 0 closed forms at the rate O(α²) argued at the
+/// top of this file.
+#[test]
+fn integrals_approach_the_smooth_limit() {
+    let mus = cos_axis("cos_theta_v", 5, [0.3, 1.0]);
+    let cases: Vec<(TableKind, ModelSpec)> = vec![
+        (
+            TableKind::Albedo,
+            model(
+                NdfKind::Ggx,
+                Masking::SmithHeightCorrelated,
+                Fresnel::Dielectric { eta: 1.5 },
+                0.0,
+            ),
+        ),
+        (
+            TableKind::Albedo,
+            model(
+                NdfKind::Beckmann,
+                Masking::SmithSeparable,
+                Fresnel::Schlick { f0: 0.5 },
+                0.0,
+            ),
+        ),
+        (
+            TableKind::Dfg,
+            model(
+                NdfKind::Ggx,
+                Masking::SmithHeightCorrelated,
+                Fresnel::None,
+                0.0,
+            ),
+        ),
+    ];
+    for (kind, m) in cases {
+        let limit = bake(&spec(kind, m.clone(), vec![mus.clone(), alpha_axis(2)])).unwrap();
+        let at =
+            |alpha: f64| bake(&spec(kind, m.clone(), vec![mus.clone(), at_alpha(alpha)])).unwrap();
+        let (coarse, fine) = (at(3e-3), at(3e-4));
+        for c in 0..limit.channels.len() {
+            for i in 0..5 {
+                let l0 = limit.texel([i, 0, 0], c) as f64;
+                let d1 = (coarse.texel([i, 0, 0], c) as f64 - l0).abs();
+                let d2 = (fine.texel([i, 0, 0], c) as f64 - l0).abs();
+                let what = format!("{kind:?} {:?} channel {c} at mu {}", m.ndf, mus.coord(i));
+                assert!(d2 <= 1e-6, "{what}: |E(3e-4) - E(0)| = {d2}");
+                // (below ~1e-7 the f32 texels and the 1e-9 tolerance decide, not the rate)
+                assert!(
+                    d2 <= d1 / 30.0 + 3.0 * F32,
+                    "{what}: the difference fell from {d1} (alpha 3e-3) to {d2} (3e-4) only"
+                );
+            }
+        }
+    }
+}
