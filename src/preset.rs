@@ -154,6 +154,8 @@ pub enum Layout3d {
 pub struct Preset {
     pub name: String,
     pub description: String,
+    /// Where the table an engine preset reproduces lives (`source`).
+    pub source: Option<crate::engines::shipped::Source>,
     pub tables: Vec<PresetTable>,
 }
 
@@ -178,6 +180,9 @@ pub struct PresetTable {
     /// kind's axis `order[k]`. `None`: the kind's order. Engines differ (Cycles and three.js
     /// put roughness along u, Filament n·v).
     pub axis_order: Option<Vec<usize>>,
+    /// How the engine's own file holds this table (`shipped`), for `brdfbake compare`; no
+    /// effect on the bake.
+    pub shipped: Option<crate::engines::shipped::Shipped>,
 }
 
 impl PresetTable {
@@ -262,6 +267,8 @@ struct RawPreset {
     schema: String,
     #[serde(default)]
     description: String,
+    #[serde(default)]
+    source: Option<crate::engines::shipped::Source>,
     tables: Vec<RawTable>,
 }
 
@@ -293,6 +300,8 @@ struct RawTable {
     engine: Option<Engine>,
     #[serde(default)]
     axis_order: Option<Vec<String>>,
+    #[serde(default)]
+    shipped: Option<crate::engines::shipped::Shipped>,
 }
 
 #[derive(Deserialize)]
@@ -594,6 +603,13 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 (order.iter().enumerate().any(|(k, &o)| k != o)).then_some(order)
             }
         };
+        if let Some(sh) = &t.shipped {
+            let names: Vec<String> = crate::table::channels(&spec)
+                .into_iter()
+                .map(|c| c.name)
+                .collect();
+            sh.validate(&names).map_err(|m| field(at("shipped"), m))?;
+        }
         tables.push(PresetTable {
             spec,
             formats,
@@ -602,11 +618,13 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             accept_error_estimate: t.accept_error_estimate,
             engine: t.engine,
             axis_order,
+            shipped: t.shipped,
         });
     }
     Ok(Preset {
         name: name.into(),
         description: raw.description,
+        source: raw.source,
         tables,
     })
 }

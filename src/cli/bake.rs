@@ -334,6 +334,8 @@ fn progress_bar(a: &BakeArgs, presets: &[Preset]) -> indicatif::ProgressBar {
 
 /// The presets directory searched first for preset names.
 pub const PRESET_DIR: &str = "presets";
+/// The engine presets' folder inside [`PRESET_DIR`]: baked by name, not by a bare `bake`.
+pub const ENGINE_PRESET_DIR: &str = "engines";
 
 fn load(path: &Path) -> Result<Preset, CliError> {
     preset::load(path).map_err(|e| match e {
@@ -378,15 +380,25 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
             load(p)?
         } else {
             let local = Path::new(PRESET_DIR).join(format!("{a}.json"));
+            let engine = Path::new(PRESET_DIR)
+                .join(ENGINE_PRESET_DIR)
+                .join(format!("{a}.json"));
             if local.is_file() {
                 load(&local)?
-            } else if let Some((n, t)) = crate::presets::BUILTIN.iter().find(|(n, _)| n == a) {
+            } else if engine.is_file() {
+                load(&engine)?
+            } else if let Some((n, t)) = crate::presets::BUILTIN
+                .iter()
+                .chain(crate::presets::ENGINES)
+                .find(|(n, _)| n == a)
+            {
                 preset::parse(t, &format!("built-in preset {n}"), n)
                     .map_err(|e| CliError::input(e.to_string()))?
             } else {
                 return Err(CliError::input(format!(
-                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/, not built in (built-in presets: {})",
-                    crate::presets::BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/ or {PRESET_DIR}/{ENGINE_PRESET_DIR}/, not built in (built-in presets: {}; engine presets: {})",
+                    crate::presets::BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+                    crate::presets::ENGINES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
                 )));
             }
         };
