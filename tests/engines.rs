@@ -373,7 +373,7 @@ fn report_shows_engine_comparisons() {
     assert!(s.contains("threejs-dfg-lut / dfg") && s.contains("mrdoob/three.js"));
     assert!(s.contains("cos_theta_v = 0.03125 (texel 0) errs more than the rest"));
     assert_eq!(
-        s.matches("dfg: shipped − exact").count(),
+        s.matches("<title>dfg: shipped − exact").count(),
         2,
         "a heatmap per channel"
     );
