@@ -115,7 +115,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }),
         Box::new(RustSource {
             table_name: "dfg".into(),
-            half: true,
+            storage: Storage::F16,
         }),
     ];
     let mut files = Vec::new();

@@ -22,13 +22,18 @@ pub const MAX_PRESET_BYTES: u64 = 1 << 20;
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum Format {
-    /// OpenEXR, f32 or f16 per `storage`.
+    /// OpenEXR, f32 or f16 per `storage` (EXR has no normalized-integer type: not for
+    /// unorm8/unorm16 tables).
     Exr,
-    /// KTX 2.0, R/RG/RGBA 16- or 32-bit float per `storage` (3 channels padded to 4).
+    /// KTX 2.0, R/RG/RGBA 16- or 32-bit float or 8- or 16-bit UNORM per `storage` (3
+    /// channels padded to 4).
     Ktx2,
     /// 16-bit PNG previews for people (one greyscale image per channel and a false-colour
     /// image with a legend), never a texture to sample.
     Png,
+    /// The texels of a unorm8/unorm16 table as an 8- or 16-bit PNG (`TABLE.png`): data to
+    /// upload, not a preview ([`crate::encode::png_data`]).
+    PngData,
     /// C/C++ header with the texels as a `float` (or half-bit `uint16_t`) array.
     H,
     /// Rust source with the texels as a `static` array.
@@ -42,10 +47,11 @@ pub enum Format {
 }
 
 impl Format {
-    pub const ALL: [Format; 8] = [
+    pub const ALL: [Format; 9] = [
         Format::Exr,
         Format::Ktx2,
         Format::Png,
+        Format::PngData,
         Format::H,
         Format::Rs,
         Format::Glsl,
@@ -58,6 +64,7 @@ impl Format {
             Format::Exr => "exr",
             Format::Ktx2 => "ktx2",
             Format::Png => "png",
+            Format::PngData => "png-data",
             Format::H => "h",
             Format::Rs => "rs",
             Format::Glsl => "glsl",
@@ -88,6 +95,26 @@ impl Format {
             out.push(*f);
         }
         Ok(out)
+    }
+}
+
+/// Whether `storage` can be written as `format`: `None` when it can, else why not and what
+/// works instead. EXR has no normalized-integer sample type; `png-data` stores only
+/// normalized integers.
+pub fn format_refusal(storage: Storage, format: Format) -> Option<String> {
+    match (format, storage.is_unorm()) {
+        (Format::Exr, true) => Some(format!(
+            "EXR has no normalized-integer sample type, so a {} table cannot be written as exr: \
+             use ktx2, png-data, h or rs (or \"storage\": \"f16\" or \"f32\" for an EXR file)",
+            storage.name()
+        )),
+        (Format::PngData, false) => Some(format!(
+            "png-data holds normalized integers (an 8- or 16-bit PNG of the texels): it needs \
+             \"storage\": \"unorm8\" or \"unorm16\"; a {} table is written as exr, ktx2, h or rs \
+             (\"png\" gives previews for people)",
+            storage.name()
+        )),
+        _ => None,
     }
 }
 
@@ -181,6 +208,17 @@ pub struct PresetTable {
 }
 
 impl PresetTable {
+    /// Checks that the table can be written in `formats` (the preset's, or `bake --format`'s
+    /// in their place): the first refusal of [`format_refusal`], naming the table.
+    pub fn check_formats(&self, formats: &[Format]) -> Result<(), String> {
+        for f in formats {
+            if let Some(why) = format_refusal(self.spec.storage, *f) {
+                return Err(format!("table `{}`: {why}", self.spec.name));
+            }
+        }
+        Ok(())
+    }
+
     /// The baked table (in the kind's axis order) in its stored order.
     pub fn stored(&self, lut: Lut) -> Lut {
         match &self.axis_order {
@@ -514,7 +552,14 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         .map_err(|(p, m)| field(at(&p), m))?;
         spec.validate()
             .map_err(|m| field(format!("tables[{i}]"), m))?;
-        let formats = t.formats.unwrap_or_else(|| vec![Format::Exr]);
+        // (EXR cannot hold normalized integers: a UNORM table's default file is the KTX2)
+        let formats = t.formats.unwrap_or_else(|| {
+            vec![if spec.storage.is_unorm() {
+                Format::Ktx2
+            } else {
+                Format::Exr
+            }]
+        });
         if formats.is_empty() {
             return Err(field(
                 at("formats"),
@@ -529,6 +574,16 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 return Err(field(
                     at(&format!("formats[{k}]")),
                     format!("{:?} is listed twice; list each format once", f.name()),
+                ));
+            }
+            if let Some(why) = format_refusal(spec.storage, *f) {
+                return Err(field(
+                    at(&format!("formats[{k}]")),
+                    format!(
+                        "{:?} with \"storage\": {:?}: {why}",
+                        f.name(),
+                        spec.storage.name()
+                    ),
                 ));
             }
         }

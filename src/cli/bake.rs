@@ -194,6 +194,16 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = resolve(&a.presets)?;
+    // formats a table's storage cannot be written in (--format exr for a unorm table, …)
+    for p in &presets {
+        for t in &p.tables {
+            t.check_formats(formats.as_deref().unwrap_or(&t.formats))
+                .map_err(|e| {
+                    let flag = if formats.is_some() { "--format: " } else { "" };
+                    CliError::input(format!("{flag}preset {}: {e}", p.name))
+                })?;
+        }
+    }
     // (--check reads what a bake would write, one file at a time: bounded by the same)
     let estimate = crate::resources::estimate(&presets, formats.as_deref());
     crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)?;
