@@ -103,6 +103,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         accept_error_estimate: None,
         engine: None,
         axis_order: None,
+        channels: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");

@@ -92,7 +92,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
                         .to_string(),
                 );
             }
-            let channels = crate::table::channels(spec);
+            let channels = table.stored_channels();
             let rgba = channels
                 .iter()
                 .zip(["R", "G", "B", "A"])

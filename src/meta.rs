@@ -68,7 +68,56 @@ pub fn inputs(table: &PresetTable) -> Value {
             .map(|&k| spec.axes[k].name.clone())
             .collect::<Vec<_>>());
     }
+    if let Some(c) = &table.channels {
+        let kind = crate::table::channels(spec);
+        v["channels"] = json!(c.iter().map(|s| s.text(&kind)).collect::<Vec<_>>());
+    }
     v
+}
+
+/// The `channels` sidecar field: per stored channel its index, name and meaning; with the
+/// preset's `channels` set, also what it stores (the preset's entry), the computed channel it
+/// is made from and the transform.
+fn channels_json(table: &PresetTable, lut: &Lut) -> Value {
+    let Some(stored) = &table.channels else {
+        return json!(lut
+            .channels
+            .iter()
+            .enumerate()
+            .map(|(i, c)| json!({"index": i, "name": c.name, "meaning": c.meaning}))
+            .collect::<Vec<_>>());
+    };
+    let kind = crate::table::channels(&table.spec);
+    json!(lut
+        .channels
+        .iter()
+        .zip(stored)
+        .enumerate()
+        .map(|(i, (c, s))| {
+            json!({
+                "index": i,
+                "name": c.name,
+                "meaning": c.meaning,
+                "stores": s.text(&kind),
+                "source": s.source().map(|k| kind[k].name.clone()),
+                "transform": s.transform(),
+            })
+        })
+        .collect::<Vec<_>>())
+}
+
+/// The one-line summary of the stored channels (`R = A, G = B, B = 0`), when `channels` is set.
+pub fn channels_summary(table: &PresetTable) -> Option<String> {
+    let stored = table.channels.as_ref()?;
+    let kind = crate::table::channels(&table.spec);
+    Some(
+        stored
+            .iter()
+            .zip(crate::preset::COMPONENT_NAMES)
+            .map(|(s, n)| format!("{n} = {}", s.text(&kind)))
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
 }
 
 /// `sha256:<hex>` of the canonical inputs and brdfbake's version.
@@ -309,7 +358,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         },
         "model": model_json(spec),
         "axes": lut.axes.iter().enumerate().map(|(k, a)| axis_json(k, a)).collect::<Vec<_>>(),
-        "channels": lut.channels.iter().enumerate().map(|(i, c)| json!({"index": i, "name": c.name, "meaning": c.meaning})).collect::<Vec<_>>(),
+        "channels": channels_json(table, lut),
         "reconstruction": reconstruction(spec),
         "storage": {
             "texel_type": texel_type,
@@ -457,6 +506,10 @@ pub fn header_attributes(preset: &str, table: &PresetTable, lut: &Lut) -> Vec<(S
     // (only for the normalized-integer storages: float tables keep their attributes)
     if spec.storage.is_unorm() {
         v.push(("storage".to_string(), spec.storage.name().to_string()));
+    }
+    // (only when set)
+    if let Some(c) = channels_summary(table) {
+        v.push(("channels".to_string(), c));
     }
     for (k, a) in lut.axes.iter().enumerate() {
         let mut text = format!(

@@ -128,7 +128,7 @@ pub fn bake_preset_until(
             deadline,
             accept_error_estimate: t.accept_error_estimate,
         };
-        let mut lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
+        let lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
             crate::table::BakeError::TimeLimit { .. }
             | crate::table::BakeError::ToleranceMissed { .. } => {
                 PipelineError::Failed(format!("preset {}: {e}", preset.name))
@@ -136,6 +136,9 @@ pub fn bake_preset_until(
             _ => PipelineError::Input(format!("preset {}: {e}", preset.name)),
         })?;
         let elapsed = start.elapsed();
+        // the engine's channels (`channels`: values, before the scale) in its axis order
+        // (`axis_order`), where the preset gives them
+        let mut lut = t.stored(lut);
         check_underflow(t, &lut).map_err(|m| {
             PipelineError::Input(format!(
                 "preset {}: table {}: {m}",
@@ -156,8 +159,6 @@ pub fn bake_preset_until(
                 )));
             }
         }
-        // the engine's axis order, where the preset gives one
-        let lut = t.stored(lut);
         check_unorm_range(t, &lut).map_err(|m| {
             PipelineError::Input(format!(
                 "preset {}: table `{}`: {m}",

@@ -3,7 +3,7 @@
 //! wrong types are errors that name the field's path, and every value is checked against
 //! what is accepted before anything is baked.
 
-use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::lut::{Axis, Channel, Convention, Lut, Quantity};
 use crate::model::{Fresnel, FresnelQuantity, Masking, NdfKind, RoughnessQuantity};
 use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 use serde::Deserialize;
@@ -205,7 +205,93 @@ pub struct PresetTable {
     /// kind's axis `order[k]`. `None`: the kind's order. Engines differ (Cycles and three.js
     /// put roughness along u, Filament n·v).
     pub axis_order: Option<Vec<usize>>,
+    /// The channels stored (`channels`), in texture component order (R, G, B, A), each a
+    /// function of the kind's computed channels ([`crate::table::channels`]). `None`: the
+    /// kind's channels as computed. Engines differ (the glTF Sample Viewer's Charlie LUT
+    /// holds its value in B, BSDL stores 1 − E).
+    pub channels: Option<Vec<StoredChannel>>,
 }
+
+/// One stored channel of a table whose preset sets `channels`: what texture component k
+/// holds, in terms of the kind's computed channels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StoredChannel {
+    /// The kind's channel `i` as computed (`"E"`).
+    Computed(usize),
+    /// One minus the kind's channel `i` (`"1-E"`).
+    OneMinus(usize),
+    /// The constant 0 (`"0"`).
+    Zero,
+    /// The constant 1 (`"1"`).
+    One,
+}
+
+impl StoredChannel {
+    /// The stored value, from the computed channels' values.
+    pub fn apply(self, computed: &[f64]) -> f64 {
+        match self {
+            StoredChannel::Computed(i) => computed[i],
+            StoredChannel::OneMinus(i) => 1.0 - computed[i],
+            StoredChannel::Zero => 0.0,
+            StoredChannel::One => 1.0,
+        }
+    }
+
+    /// [`Self::apply`] in f32, as the stored texels are computed from the baked f32 values
+    /// (1 − v is rounded once, to the nearest f32).
+    pub fn apply_f32(self, computed: &[f32]) -> f32 {
+        match self {
+            StoredChannel::Computed(i) => computed[i],
+            StoredChannel::OneMinus(i) => (1.0 - computed[i] as f64) as f32,
+            StoredChannel::Zero => 0.0,
+            StoredChannel::One => 1.0,
+        }
+    }
+
+    /// The computed channel it is made from, if any.
+    pub fn source(self) -> Option<usize> {
+        match self {
+            StoredChannel::Computed(i) | StoredChannel::OneMinus(i) => Some(i),
+            StoredChannel::Zero | StoredChannel::One => None,
+        }
+    }
+
+    /// The preset's spelling (`"E"`, `"1-E"`, `"0"`, `"1"`), given the kind's channels.
+    pub fn text(self, kind_channels: &[Channel]) -> String {
+        match self {
+            StoredChannel::Computed(i) => kind_channels[i].name.clone(),
+            StoredChannel::OneMinus(i) => format!("1-{}", kind_channels[i].name),
+            StoredChannel::Zero => "0".into(),
+            StoredChannel::One => "1".into(),
+        }
+    }
+
+    /// The transform's name in the sidecar.
+    pub fn transform(self) -> &'static str {
+        match self {
+            StoredChannel::Computed(_) => "identity",
+            StoredChannel::OneMinus(_) => "one minus",
+            StoredChannel::Zero => "constant 0",
+            StoredChannel::One => "constant 1",
+        }
+    }
+
+    /// Parses a preset entry against the kind's channels: `None` when it names none.
+    pub fn parse(entry: &str, kind_channels: &[Channel]) -> Option<StoredChannel> {
+        let find = |n: &str| kind_channels.iter().position(|c| c.name == n);
+        match entry {
+            "0" => Some(StoredChannel::Zero),
+            "1" => Some(StoredChannel::One),
+            _ => match entry.strip_prefix("1-") {
+                Some(n) => find(n).map(StoredChannel::OneMinus),
+                None => find(entry).map(StoredChannel::Computed),
+            },
+        }
+    }
+}
+
+/// The names of stored channels when a preset sets `channels`: the texture components.
+pub const COMPONENT_NAMES: [&str; 4] = ["R", "G", "B", "A"];
 
 impl PresetTable {
     /// Checks that the table can be written in `formats` (the preset's, or `bake --format`'s
@@ -219,11 +305,83 @@ impl PresetTable {
         Ok(())
     }
 
-    /// The baked table (in the kind's axis order) in its stored order.
+    /// The baked table (the kind's channels, in the kind's axis order) as stored: its stored
+    /// channels (`channels`) in its stored axis order (`axis_order`).
     pub fn stored(&self, lut: Lut) -> Lut {
+        let lut = self.stored_channels_of(lut);
         match &self.axis_order {
             Some(order) => lut.permuted(order),
             None => lut,
+        }
+    }
+
+    /// The baked table's stored channels (`channels`): every texel's stored values computed
+    /// from its computed ones, the error estimates carried along (0 for the constants).
+    fn stored_channels_of(&self, lut: Lut) -> Lut {
+        let Some(stored) = &self.channels else {
+            return lut;
+        };
+        let nc = lut.channels.len().max(1);
+        let mut data = Vec::with_capacity(lut.data.len() / nc * stored.len());
+        for texel in lut.data.chunks_exact(nc) {
+            data.extend(stored.iter().map(|s| s.apply_f32(texel)));
+        }
+        Lut {
+            channels: self.stored_channels(),
+            data,
+            error_estimate: stored
+                .iter()
+                .map(|s| s.source().map_or(0.0, |i| lut.error_estimate[i]))
+                .collect(),
+            ..lut
+        }
+    }
+
+    /// The channels as stored: the kind's ([`crate::table::channels`]), or with `channels`
+    /// set, the texture components R, G, B, A, each saying what it holds.
+    pub fn stored_channels(&self) -> Vec<Channel> {
+        let kind = crate::table::channels(&self.spec);
+        let Some(stored) = &self.channels else {
+            return kind;
+        };
+        stored
+            .iter()
+            .zip(COMPONENT_NAMES)
+            .map(|(s, name)| Channel {
+                name: name.to_string(),
+                meaning: match *s {
+                    StoredChannel::Computed(i) => {
+                        format!("{}: {}", kind[i].name, kind[i].meaning)
+                    }
+                    StoredChannel::OneMinus(i) => format!(
+                        "1 - {n}, one minus {n} = {}",
+                        kind[i].meaning,
+                        n = kind[i].name
+                    ),
+                    StoredChannel::Zero => "the constant 0".into(),
+                    StoredChannel::One => "the constant 1".into(),
+                },
+            })
+            .collect()
+    }
+
+    /// The stored channels' values from the computed ones (e.g. exact values, for `verify`
+    /// and `probe` to compare with the stored texels).
+    pub fn stored_values(&self, computed: &[f64]) -> Vec<f64> {
+        match &self.channels {
+            Some(stored) => stored.iter().map(|s| s.apply(computed)).collect(),
+            None => computed.to_vec(),
+        }
+    }
+
+    /// Error estimates of computed values carried to the stored channels (0 for constants).
+    pub fn stored_errors(&self, computed: &[f64]) -> Vec<f64> {
+        match &self.channels {
+            Some(stored) => stored
+                .iter()
+                .map(|s| s.source().map_or(0.0, |i| computed[i]))
+                .collect(),
+            None => computed.to_vec(),
         }
     }
 
@@ -331,6 +489,8 @@ struct RawTable {
     engine: Option<Engine>,
     #[serde(default)]
     axis_order: Option<Vec<String>>,
+    #[serde(default)]
+    channels: Option<Vec<String>>,
 }
 
 #[derive(Deserialize)]
@@ -649,6 +809,55 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 (order.iter().enumerate().any(|(k, &o)| k != o)).then_some(order)
             }
         };
+        let channels = match &t.channels {
+            None => None,
+            Some(entries) => {
+                let kind = crate::table::channels(&spec);
+                let names: Vec<&str> = kind.iter().map(|c| c.name.as_str()).collect();
+                let accepted = format!(
+                    "a channel of the {} table ({}), \"1-NAME\" for one minus it (\"1-{}\"), or the constants \"0\" and \"1\"",
+                    spec.kind.name(),
+                    names.join(", "),
+                    names[0]
+                );
+                if entries.is_empty() || entries.len() > 4 {
+                    return Err(field(
+                        at("channels"),
+                        format!(
+                            "lists {} entries: a texture stores 1 to 4 channels (R, G, B, A), each {accepted}",
+                            entries.len()
+                        ),
+                    ));
+                }
+                let mut stored = Vec::new();
+                for (k, e) in entries.iter().enumerate() {
+                    let s = StoredChannel::parse(e, &kind).ok_or_else(|| {
+                        field(
+                            at(&format!("channels[{k}]")),
+                            format!("{e:?} is not a stored channel: give {accepted}"),
+                        )
+                    })?;
+                    stored.push(s);
+                }
+                if stored.iter().all(|s| s.source().is_none()) {
+                    return Err(field(
+                        at("channels"),
+                        format!(
+                            "stores only constants: store at least one of the table's channels ({})",
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                // (the kind's own channels in order are no change: the same table, the same
+                // hash, the same files)
+                let identity = stored.len() == kind.len()
+                    && stored
+                        .iter()
+                        .enumerate()
+                        .all(|(k, s)| *s == StoredChannel::Computed(k));
+                (!identity).then_some(stored)
+            }
+        };
         tables.push(PresetTable {
             spec,
             formats,
@@ -657,6 +866,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             accept_error_estimate: t.accept_error_estimate,
             engine: t.engine,
             axis_order,
+            channels,
         });
     }
     Ok(Preset {

@@ -312,6 +312,16 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
         t.insert("engine".into(), e.clone());
     }
     t.insert("axis_order".into(), Value::Array(order));
+    // the preset's `channels`, which each stored channel states when it was set
+    let stores: Vec<Value> = need(&["channels"])?
+        .as_array()
+        .ok_or("the sidecar's channels is not a list")?
+        .iter()
+        .filter_map(|c| c.get("stores").cloned())
+        .collect();
+    if !stores.is_empty() {
+        t.insert("channels".into(), Value::Array(stores));
+    }
     if axes.len() == 3 {
         if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
             t.insert("layout_3d".into(), l.clone());
@@ -426,7 +436,7 @@ fn read_exr(
         )));
     }
     let (axes, chans) = match table {
-        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), t.stored_channels()),
         None => {
             let mut axes = Vec::new();
             for k in 0..3 {
@@ -691,7 +701,7 @@ fn read_ktx2(
         })
         .collect();
     let (axes, chans) = match table {
-        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), t.stored_channels()),
         None => {
             let sizes: Vec<usize> = if d > 1 {
                 vec![w, h, d]
@@ -837,7 +847,7 @@ fn read_png_data(
                     ),
                 ));
             }
-            (t.stored_axes(), crate::table::channels(&t.spec))
+            (t.stored_axes(), t.stored_channels())
         }
         None => {
             let mut axes = Vec::new();

@@ -54,7 +54,10 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
         .axes
         .iter()
         .fold(1u64, |n, a| n.saturating_mul(a.size as u64));
-    let channels = crate::table::channels(&t.spec).len() as u64;
+    // (the kind's channels and the stored ones both live while a table is stored)
+    let channels = crate::table::channels(&t.spec)
+        .len()
+        .max(t.stored_channels().len()) as u64;
     let stored = t.spec.storage.bytes() as u64;
     // the Lut's f32 texels
     let mut per_texel: u64 = channels * 4;

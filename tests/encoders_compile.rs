@@ -120,6 +120,7 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         accept_error_estimate: None,
         engine: None,
         axis_order: None,
+        channels: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((

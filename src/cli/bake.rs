@@ -48,11 +48,14 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
     let mut keys = Vec::new();
     for f in formats {
         if *f == Format::Png {
-            let ch = crate::table::channels(&t.spec);
+            let ch = t.stored_channels();
             for c in &ch {
                 keys.push(format!("preview-{}.png", c.name));
             }
             keys.push(format!("preview-{}-colour.png", ch[0].name));
+        } else if *f == Format::PngData {
+            // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
+            keys.push("png".to_string());
         } else {
             keys.push(f.name().to_string());
         }

@@ -126,7 +126,7 @@ pub fn verify_texels(
                 .map(|(k, a)| a.coord(idx[k]))
                 .collect();
             crate::readback::exact_at(&table.spec, &table.to_kind_order(&x), REFERENCE_TOLERANCE)
-                .map(|r| r.0)
+                .map(|r| table.stored_values(&r.0))
         })
         .collect();
     if stopped.into_inner() {
@@ -191,7 +191,7 @@ pub fn verify_lookups(
                 return Ok(Vec::new());
             }
             crate::readback::exact_at(&table.spec, &table.to_kind_order(x), REFERENCE_TOLERANCE)
-                .map(|r| r.0)
+                .map(|r| table.stored_values(&r.0))
         })
         .collect();
     if stopped.into_inner() {
