@@ -288,7 +288,12 @@ fn check_unorm_range(t: &PresetTable, lut: &Lut) -> Result<(), String> {
         n(v as f64),
         t.spec.storage.name(),
         t.spec.storage.unorm_max().unwrap_or(0),
-        unorm::advice(v as f64, unorm::channel_extreme(lut, c), t.scale)
+        unorm::advice(
+            v as f64,
+            unorm::channel_extreme(lut, c),
+            t.scale,
+            t.spec.storage.quantization_step().unwrap_or(0.0) / 2.0
+        )
     ))
 }
 

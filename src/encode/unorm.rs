@@ -64,7 +64,7 @@ pub fn codes(table: &str, lut: &Lut, storage: Storage) -> Result<Vec<u16>, Encod
             texel: texel[..lut.axes.len().clamp(1, 3)].to_vec(),
             value: v as f64,
             storage: storage.name(),
-            advice: advice(v as f64, channel_extreme(lut, c), 1.0),
+            advice: advice(v as f64, channel_extreme(lut, c), 1.0, 0.5 / max as f64),
         });
     }
     Ok(lut
@@ -88,22 +88,29 @@ pub(crate) fn channel_extreme(lut: &Lut, c: usize) -> (f64, f64) {
 }
 
 /// What to do about a value `v` (stored units) that UNORM cannot hold, given the channel's
-/// (smallest, largest) stored values and the table's current scale.
-pub(crate) fn advice(v: f64, (lo, hi): (f64, f64), scale: f64) -> String {
-    if v < 0.0 || lo < 0.0 {
-        format!(
-            "a normalized-integer storage holds [0, 1] only and this channel reaches {}: store the \
-             table as \"f16\" or \"f32\", or store a transform of the channel that stays in [0, 1] \
-             (\"channels\")",
-            crate::numfmt::num(lo)
-        )
+/// (smallest, largest) stored values, the table's current scale and the storage's half step
+/// (values within it of [0, 1] round to the end codes).
+pub(crate) fn advice(v: f64, (lo, hi): (f64, f64), scale: f64, half_step: f64) -> String {
+    let n = crate::numfmt::num;
+    let negative = format!(
+        "a normalized-integer storage holds [0, 1] only and this channel reaches {}: store the \
+         table as \"f16\" or \"f32\", or store a transform of the channel that stays in [0, 1] \
+         (\"channels\")",
+        n(lo)
+    );
+    if v < 0.0 {
+        return negative;
+    }
+    let fit = format!(
+        "the channel reaches {}: set the table's \"scale\" to {} or less (stored = value x \
+         scale; the shader divides by it), or store it as \"f16\" or \"f32\"",
+        n(hi),
+        n(scale / hi)
+    );
+    if lo < -half_step {
+        format!("{fit}; besides, {negative}")
     } else {
-        let s = crate::numfmt::num(scale / hi);
-        format!(
-            "the channel reaches {}: set the table's \"scale\" to {s} or less (stored = value x \
-             scale; the shader divides by it), or store it as \"f16\" or \"f32\"",
-            crate::numfmt::num(hi)
-        )
+        fit
     }
 }
 
