@@ -313,9 +313,9 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     }
     t.insert("axis_order".into(), Value::Array(order));
     // the preset's `channels`, which each stored channel states when it was set
-    let stores: Vec<Value> = need(&["channels"])?
-        .as_array()
-        .ok_or("the sidecar's channels is not a list")?
+    let stores: Vec<Value> = get(&["channels"])
+        .and_then(Value::as_array)
+        .map_or(&[][..], Vec::as_slice)
         .iter()
         .filter_map(|c| c.get("stores").cloned())
         .collect();
