@@ -50,11 +50,17 @@ fn reference_tolerance(tol: f64) -> f64 {
     (tol / 100.0).clamp(crate::table::spec::MIN_TOLERANCE, 1e-9)
 }
 
-/// `v` as the table's storage holds it (f16 rounds to nearest even; f32 as is).
+/// `v` as the table's storage holds it (f16 rounds to nearest even; UNORM to its code, read
+/// back; f32 as is). A value a UNORM storage cannot hold stays as it is (the bake refuses it).
 fn stored_value(storage: Storage, v: f32) -> f32 {
     match storage {
         Storage::F16 => half::f16::from_f32(v).to_f32(),
         Storage::F32 => v,
+        Storage::Unorm8 | Storage::Unorm16 => {
+            let max = storage.unorm_max().expect("a UNORM storage");
+            crate::encode::unorm::code(v, max)
+                .map_or(v, |c| crate::encode::unorm::value(c, max) as f32)
+        }
     }
 }
 
@@ -101,7 +107,9 @@ pub fn compare_table(
     let stored = (t.spec.storage != Storage::F32).then(|| {
         let mut s = ours.clone();
         for v in s.data.iter_mut() {
-            *v = stored_value(t.spec.storage, *v);
+            // (the storage holds value × scale)
+            let scale = t.scale as f32;
+            *v = stored_value(t.spec.storage, *v * scale) / scale;
         }
         s
     });
