@@ -886,11 +886,11 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 Some(c) => c.iter().map(|s| s.text(&kind)).collect(),
                 None => stored.iter().map(|c| c.name.clone()).collect(),
             };
+            // (a spelling first: with `"channels": ["A", "B", "0"]` the file's "B" is the
+            // split sum's B, stored in component G, not component B)
             for c in sh.channels.iter_mut() {
                 if let Some(k) = spelled.iter().position(|x| x == c) {
-                    if !stored.iter().any(|s| &s.name == c) {
-                        *c = stored[k].name.clone();
-                    }
+                    *c = stored[k].name.clone();
                 }
             }
             let names: Vec<String> = stored.into_iter().map(|c| c.name).collect();

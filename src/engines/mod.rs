@@ -21,7 +21,9 @@ pub struct Comparison {
     pub file: String,
     /// Stored axis sizes.
     pub dims: Vec<usize>,
-    /// The largest error estimate of the exact reference.
+    /// The tolerance the exact reference was baked at (100× the table's, or the table's own
+    /// where the tighter one cannot be reached), and its largest error estimate.
+    pub reference_tolerance: f64,
     pub exact_error_estimate: f64,
     /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
     /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
@@ -94,15 +96,24 @@ pub fn compare_table(
     )?;
     let mut ref_spec = t.spec.clone();
     ref_spec.tolerance = reference_tolerance(t.spec.tolerance);
-    let exact = crate::table::bake_with(
-        &ref_spec,
-        &BakeOptions {
-            deadline,
-            // (where the reference's rule cannot reach its tighter tolerance it keeps what it
-            // reached, at most what the preset accepts)
-            accept_error_estimate: Some(t.accept_error_estimate.unwrap_or(t.spec.tolerance)),
-        },
-    )?;
+    let reference = |spec: &crate::table::TableSpec| {
+        crate::table::bake_with(
+            spec,
+            &BakeOptions {
+                deadline,
+                // (where the reference's rule cannot reach its tighter tolerance it keeps what
+                // it reached, at most what the preset accepts)
+                accept_error_estimate: Some(t.accept_error_estimate.unwrap_or(t.spec.tolerance)),
+            },
+        )
+    };
+    // a texel whose tighter rule does not converge (a near-singular lobe at a grazing view)
+    // leaves the reference at the preset's own tolerance, which the preset's bake met
+    let (exact, reference_tolerance) = match reference(&ref_spec) {
+        Ok(l) => (l, ref_spec.tolerance),
+        Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
+        Err(e) => return Err(e.into()),
+    };
     let ours = t.stored(ours);
     let stored = (t.spec.storage != Storage::F32).then(|| {
         let mut s = ours.clone();
@@ -153,6 +164,7 @@ pub fn compare_table(
         table: t.spec.name.clone(),
         file: file.to_string(),
         dims: stored_axes.iter().map(|a| a.size).collect(),
+        reference_tolerance,
         exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
         brdfbake_bound: 1e-6f64.max(rounding),
         channels,
