@@ -791,6 +791,13 @@ fn read_png_data(
         .collect();
     let (w, h) = (info.width as usize, info.height as usize);
     let (color, depth) = (info.color_type, info.bit_depth);
+    // (before any allocation: a hostile header may claim 2^31 x 2^31 pixels)
+    let decoded = (w as u128) * (h as u128) * 8;
+    if decoded > MAX_PNG_DECODED_BYTES as u128 {
+        return Err(not_ours(format!(
+            "its header claims {w} x {h} pixels, more than a table brdfbake writes (at most 2^24 texels)"
+        )));
+    }
     let facts: Facts = text
         .iter()
         .filter_map(|(k, v)| Some((k.strip_prefix(ATTRIBUTE_PREFIX)?.to_string(), v.clone())))

@@ -316,7 +316,20 @@ const CASES: &[(&str, i32, &[&str], Setup)] = &[
     (
         "inspect: unknown extension",
         INPUT,
-        &["x.png", "accepted: .exr, .ktx2"],
+        &["x.tga", "accepted: .exr, .ktx2, a png-data .png"],
+        |w| {
+            fs::write(w.join("x.tga"), b"\x00\x00\x02").unwrap();
+            os(&["inspect", "x.tga"])
+        },
+    ),
+    (
+        "inspect: a truncated .png",
+        INPUT,
+        &[
+            "x.png",
+            "not a png-data file brdfbake wrote",
+            "no PNG signature",
+        ],
         |w| {
             fs::write(w.join("x.png"), b"\x89PNG").unwrap();
             os(&["inspect", "x.png"])

@@ -694,3 +694,72 @@ fn unorm_outputs_are_deterministic() {
     assert_eq!(a, cli::snapshot(&d.join("b")));
     assert_eq!(a, cli::snapshot(&d.join("c")));
 }
+
+/// CRC-32 (ISO-HDLC) of a PNG chunk's type and data.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = 0xffff_ffffu32;
+    for &b in bytes {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 == 1 {
+                0xedb8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// A PNG of just a header (IHDR: `w` × `h`, 16-bit RGBA) and IEND.
+fn png_header_only(w: u32, h: u32) -> Vec<u8> {
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    let chunk = |out: &mut Vec<u8>, kind: &[u8], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut typed = kind.to_vec();
+        typed.extend_from_slice(data);
+        out.extend_from_slice(&typed);
+        out.extend_from_slice(&crc32(&typed).to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[16, 6, 0, 0, 0]); // 16-bit RGBA, deflate, adaptive, no interlace
+    chunk(&mut out, b"IHDR", &ihdr);
+    chunk(&mut out, b"IEND", &[]);
+    out
+}
+
+/// Hostile PNGs: a header claiming 2^31 − 1 squared pixels is refused before anything is
+/// allocated for it (no abort: exit 2, at once), a PNG that is not brdfbake's is named as such.
+#[test]
+fn hostile_pngs_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // the CRC is right: the png crate accepts this header
+    let huge = png_header_only(0x7fff_ffff, 0x7fff_ffff);
+    fs::write(d.join("huge.png"), &huge).unwrap();
+    let o = cli::run_within(
+        d,
+        &["inspect", "huge.png"],
+        std::time::Duration::from_secs(60),
+    );
+    cli::assert_fails(
+        &o,
+        cli::INPUT,
+        // (the decoder's limit, the largest table's decoded size, or readback's own check)
+        &["huge.png", "not a png-data file brdfbake wrote"],
+        "huge",
+    );
+    let small = png_header_only(4, 4);
+    fs::write(d.join("small.png"), &small).unwrap();
+    for cmd in ["inspect", "verify"] {
+        let o = cli::run_within(d, &[cmd, "small.png"], std::time::Duration::from_secs(60));
+        cli::assert_fails(
+            &o,
+            cli::INPUT,
+            &["small.png", "not a png-data file brdfbake wrote"],
+            cmd,
+        );
+    }
+}
