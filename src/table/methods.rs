@@ -41,18 +41,29 @@ pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
     match (s.ndf.kind(), s.masking) {
         (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
         (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+        (NdfKind::Ggx, m @ (Masking::SchlickGgx | Masking::SchlickGgxDirect)) => {
+            m.schlick(s.ndf.alpha()).map(|g| Smith::Schlick { k: g.k })
+        }
         _ => None,
     }
 }
 
 /// Whether a dfg table with this model uses the specialised kernels of
-/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels.
+/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels: GGX with Smith's
+/// masking or Schlick's approximation of it (smooth functions of (n·v, n·l) alone).
 pub fn split_sum_uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
-    ndf == Some(NdfKind::Ggx)
-        && matches!(
-            masking,
-            Masking::SmithHeightCorrelated | Masking::SmithSeparable
-        )
+    ndf == Some(NdfKind::Ggx) && kernel_masking(masking)
+}
+
+/// The masking terms the GGX polar kernel takes.
+fn kernel_masking(masking: Masking) -> bool {
+    matches!(
+        masking,
+        Masking::SmithHeightCorrelated
+            | Masking::SmithSeparable
+            | Masking::SchlickGgx
+            | Masking::SchlickGgxDirect
+    )
 }
 
 /// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by the
@@ -104,13 +115,11 @@ pub fn albedo_uses_kernel(model: &super::ModelSpec) -> bool {
     use crate::model::NdfKind;
     model.diffuse_weight == 0.0
         && model.fresnel == crate::model::Fresnel::None
-        && matches!(
-            (model.ndf, model.masking),
-            (
-                Some(NdfKind::Ggx),
-                Masking::SmithHeightCorrelated | Masking::SmithSeparable
-            ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
-        )
+        && match model.ndf {
+            Some(NdfKind::Ggx) => kernel_masking(model.masking),
+            Some(NdfKind::Charlie) => model.masking == Masking::Ashikhmin,
+            _ => false,
+        }
 }
 
 /// Whether `dfg_lines.rs` bakes this table by lines: 2D dfg tables whose split-sum channels go through the
