@@ -6,4 +6,5 @@
 pub mod classic_lobes;
 pub mod ggx_polar;
 pub mod sheen_azimuth;
+pub mod sheen_polar;
 pub mod vgroove;
