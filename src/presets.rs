@@ -47,6 +47,14 @@ pub const BUILTIN: &[(&str, &str)] = &[
 /// `brdfbake bake` leaves them out.
 pub const ENGINES: &[(&str, &str)] = &[
     (
+        "bsdl-ggx-energy",
+        include_str!("../presets/engines/bsdl-ggx-energy.json"),
+    ),
+    (
+        "bsdl-sheen-energy",
+        include_str!("../presets/engines/bsdl-sheen-energy.json"),
+    ),
+    (
         "cycles-ggx-e",
         include_str!("../presets/engines/cycles-ggx-e.json"),
     ),
@@ -67,8 +75,16 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/gltf-lut-ggx.json"),
     ),
     (
+        "learnopengl-brdf-lut",
+        include_str!("../presets/engines/learnopengl-brdf-lut.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
+    ),
+    (
+        "unreal-preintegrated-gf",
+        include_str!("../presets/engines/unreal-preintegrated-gf.json"),
     ),
 ];
 

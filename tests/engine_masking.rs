@@ -9,6 +9,7 @@
 //!   reference's estimate + the f32 rounding of the stored value (half an ulp, 2⁻²⁴
 //!   relative): both estimates claim to bound their errors, so their sum bounds the
 //!   difference, and storage adds its rounding.
+//!
 //! The reference is run at `REF_TOL = 1e-10` inside its validated range (μ, α ≥ 1e-3,
 //! tests/accuracy.rs); below it the library's adaptive Gauss–Kronrod integrator (a
 //! different parameterization, rule and estimate from the table's kernels) at the same
@@ -88,14 +89,14 @@ fn check_karis_texel(lut: &Lut, masking: Masking, i: usize, j: usize) -> Vec<Str
     let alpha = lut.axes[1].alpha(j).unwrap();
     let (r, re) = split_sum_ref(masking, mu, alpha);
     let mut f = Vec::new();
-    for c in 0..2 {
+    for (c, &rc) in r.iter().enumerate() {
         let got = lut.texel([i, j, 0], c) as f64;
-        let d = (got - r[c]).abs();
-        let bound = lut.error_estimate[c] + re + F32_REL * r[c].abs();
+        let d = (got - rc).abs();
+        let bound = lut.error_estimate[c] + re + F32_REL * rc.abs();
         if d > REQ || d > bound {
             f.push(format!(
                 "{masking:?} {}x{} texel ({i},{j}) mu={mu} alpha={alpha} ch{c}: table {got}, reference {} diff {d:e} bound {bound:e}",
-                lut.axes[0].size, lut.axes[1].size, r[c]
+                lut.axes[0].size, lut.axes[1].size, rc
             ));
         }
     }
@@ -136,6 +137,31 @@ fn karis_tables_of_schlick_ggx_match_the_reference() {
         );
     }
     assert_none("schlick-ggx Karis tables", &failures);
+}
+
+/// The engine presets `unreal-preintegrated-gf` and `learnopengl-brdf-lut` are the tables
+/// checked against the reference above: the same model, axes and layout (only the name,
+/// storage and tolerance may differ), so what that test shows holds for what they bake.
+#[test]
+fn engine_presets_are_the_tables_checked_above() {
+    for (name, masking, nx, ny) in [
+        ("unreal-preintegrated-gf", Masking::SchlickGgx, 128, 32),
+        ("learnopengl-brdf-lut", Masking::SchlickGgx, 512, 512),
+    ] {
+        let (_, text) = brdfbake::presets::ENGINES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .unwrap_or_else(|| panic!("no engine preset {name}"));
+        let preset = brdfbake::preset::parse(text, name, name).unwrap();
+        let spec = &preset.tables[0].spec;
+        let want = karis(masking, nx, ny);
+        assert_eq!(
+            (&spec.kind, &spec.model, &spec.axes, &spec.dfg_layout, spec.cloth),
+            (&want.kind, &want.model, &want.axes, &want.dfg_layout, want.cloth),
+            "{name}"
+        );
+        assert!(spec.tolerance <= want.tolerance, "{name}: {}", spec.tolerance);
+    }
 }
 
 /// The directional albedo with Schlick's Fresnel (E = F0·A + B from the polar split sum)

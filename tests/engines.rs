@@ -480,3 +480,118 @@ fn gltf_lut_charlie_is_clamped_and_is_not_the_albedo() {
     assert!(f(&b["shipped"]["mean_abs"]) > 20.0 / 255.0, "{b}");
     assert_eq!(doc["brdfbake_within_bound"], true);
 }
+
+/// BSDL's energy tables are Monte Carlo means of 16,384 stratified samples of a weight in
+/// [0, 1] (its `genluts`, run at build time; the values in tests/data/engines/bsdl/ were made
+/// by building it, see the README there). A weight in [0, 1] has a variance of at most 1/4,
+/// so a plain Monte Carlo mean of N = 16384 samples has a standard error of at most
+/// 1/(2√N) = 1/256 (stratification only lowers it): every texel lies within 5 of those of the
+/// exact value, and the mean signed error over the table within 5 standard errors of the
+/// observed scatter, σ/√(texels) — no bias.
+const BSDL_MC_BOUND: f64 = 5.0 / 256.0;
+
+/// The texels of a shipped text table with their exact values at the preset's grid.
+fn shipped_and_exact(
+    preset: &str,
+    file: &str,
+    edit: impl Fn(String) -> String,
+) -> Vec<(usize, f64, f64)> {
+    let t = engine_table(preset, edit);
+    let exact = stored(&t);
+    let bytes = std::fs::read(data(file)).unwrap();
+    let [nx, ny] = [exact.axes[0].size, exact.axes[1].size];
+    let s = t
+        .shipped
+        .as_ref()
+        .unwrap()
+        .read(&bytes, [nx, ny, 1], file)
+        .unwrap();
+    (0..nx * ny)
+        .map(|k| {
+            (
+                k % nx,
+                s.values[k],
+                exact.texel([k % nx, k / nx, 0], 0) as f64,
+            )
+        })
+        .collect()
+}
+
+/// BSDL's MiniMicrofacetGGX (1 − E of GGX, 16 × 16, μ = (i/15)² along u): within the Monte
+/// Carlo bound everywhere and unbiased; read with a linear μ axis it is not.
+#[test]
+fn bsdl_ggx_energy_agrees_within_its_monte_carlo_error() {
+    let file = "bsdl/MiniMicrofacetGGX.txt";
+    let doc = compare_json(&["bsdl-ggx-energy", data(file).to_str().unwrap()]);
+    let sigma = sigma(channel(&doc, "R"));
+    let texels = shipped_and_exact("bsdl-ggx-energy", file, |s| s);
+    let mut sum = 0.0;
+    for &(i, s, e) in &texels {
+        assert!(
+            (s - e).abs() <= BSDL_MC_BOUND,
+            "texel column {i}: BSDL {s}, exact {e}"
+        );
+        sum += s - e;
+    }
+    let mean = sum / texels.len() as f64;
+    assert!(
+        mean.abs() <= 5.0 * sigma / (texels.len() as f64).sqrt(),
+        "mean signed error {mean}, scatter {sigma}"
+    );
+    let linear = shipped_and_exact("bsdl-ggx-energy", file, |s| {
+        s.replace("\"warp\": \"sqrt\", ", "")
+    });
+    let worst = linear
+        .iter()
+        .map(|&(_, s, e)| (s - e).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst > 2.0 * BSDL_MC_BOUND,
+        "a linear mu axis should not fit: {worst}"
+    );
+}
+
+/// BSDL's ContyKullaSheen (1 − E of Charlie with the softened Conty–Kulla Λ, Charlie's
+/// parameter itself along v): within the Monte Carlo bound away from its first column. At
+/// μ = 10⁻⁶ BSDL's estimate is E = 0 and it stores 1 − min(E, 1) = 1, where the exact albedo
+/// is near or above 1 (above it for most roughnesses: the fitted Λ does not conserve
+/// energy, so 1 − E < 0): the comparison names the column and the 16 saturated texels. Read
+/// with α = r² along v, the table does not fit.
+#[test]
+fn bsdl_sheen_energy_agrees_but_for_its_grazing_column() {
+    let file = "bsdl/ContyKullaSheen.txt";
+    let doc = compare_json(&["bsdl-sheen-energy", data(file).to_str().unwrap()]);
+    let texels = shipped_and_exact("bsdl-sheen-energy", file, |s| s);
+    let mut above_one = 0;
+    for &(i, s, e) in &texels {
+        if i == 0 {
+            assert!(s == 1.0 && e < 0.01, "grazing column: BSDL {s}, exact {e}");
+            above_one += usize::from(e < 0.0);
+        } else {
+            assert!(
+                (s - e).abs() <= BSDL_MC_BOUND,
+                "texel column {i}: BSDL {s}, exact {e}"
+            );
+        }
+    }
+    assert!(above_one > 8, "E > 1 at {above_one} of 16 grazing texels");
+    let findings = channel(&doc, "R")["findings"].as_array().unwrap();
+    assert!(findings
+        .iter()
+        .any(|x| x["kind"] == "line" && x["axis"] == "cos_theta_v" && x["index"] == 0));
+    assert!(findings
+        .iter()
+        .any(|x| x["kind"] == "saturated" && x["value"] == 1.0 && x["count"] == 16));
+    let squared = shipped_and_exact("bsdl-sheen-energy", file, |s| {
+        s.replace("\"quantity\": \"alpha\"", "\"quantity\": \"perceptual\"")
+    });
+    let worst = squared
+        .iter()
+        .filter(|t| t.0 > 0)
+        .map(|&(_, s, e)| (s - e).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst > 2.0 * BSDL_MC_BOUND,
+        "alpha = r^2 should not fit: {worst}"
+    );
+}

@@ -390,8 +390,11 @@ struct SharedPanel {
     a: f64,
     b: f64,
     /// Per Clenshaw–Curtis node index (finest level): the line and its node data.
-    lines: Vec<Option<Box<(Line, Vec<NodeData>)>>>,
+    lines: Vec<Option<Box<CachedLine>>>,
 }
+
+/// A cached inner line and its node data.
+type CachedLine = (Line, Vec<NodeData>);
 
 impl PolarCache {
     /// The shared panels for view `mu_v` (built if they were for another view).
