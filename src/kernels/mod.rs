@@ -5,5 +5,9 @@
 
 pub mod classic_lobes;
 pub mod ggx_polar;
+pub mod ltc_fit;
+pub mod ltc_lm;
+pub mod ltc_polygon;
+pub mod ltc_rule;
 pub mod sheen_azimuth;
 pub mod vgroove;
