@@ -50,6 +50,7 @@
 //! `F0·norm + (F90 − F0)·fresnel` is the Schlick-weighted albedo.
 
 use super::ltc_lm::{minimize, LmSettings, Normal};
+use super::ltc_probe::{ltc_probe, probes, Probe};
 use super::ltc_rule::{HemisphereRule, RuleShape};
 use crate::hemisphere::tensor::integrate_over_l_smooth;
 use crate::hemisphere::{LobeWarp, Node};
@@ -65,16 +66,21 @@ use std::f64::consts::PI;
 /// Settings of the fit.
 #[derive(Clone, Copy, Debug)]
 pub struct LtcFitOptions {
-    /// Gauss–Legendre nodes in φ of the objective's rule.
-    pub n_phi: usize,
-    /// Gauss–Legendre nodes in the inner (θh) variable.
-    pub n_u: usize,
+    /// The objective's rule: φ panels, Gauss–Legendre nodes per φ panel, inner panels,
+    /// nodes per inner panel ([`RuleShape::new`]).
+    pub rule: [usize; 4],
     /// Absolute tolerance of the norm and Fresnel integrals.
     pub tolerance: f64,
-    /// Fit `d` (the support's tilt) too; otherwise `d = 0`.
-    pub free_d: bool,
-    /// Weight of the below-horizon mass residual when `free_d` (the node weights add to 1).
-    pub mass_weight: f64,
+    /// Weight of the nodes' solid-angle term: node k weighs `point_weight·dω_k/2π`.
+    pub point_weight: f64,
+    /// Weight of the nodes' energy term: node k weighs `energy_weight·y_k·dω_k`.
+    pub energy_weight: f64,
+    /// Weight of the probe lights ([`super::ltc_probe`]): probe p weighs
+    /// `probe_weight·Ω_p/2π`.
+    pub probe_weight: f64,
+    /// The floor ε of the relative residual `(X − Y)/(Y + εΩ)`, a density per steradian of
+    /// the normalized lobe.
+    pub floor: f64,
     /// The optimizer's settings.
     pub lm: LmSettings,
 }
@@ -82,25 +88,32 @@ pub struct LtcFitOptions {
 impl Default for LtcFitOptions {
     fn default() -> Self {
         LtcFitOptions {
-            n_phi: 24,
-            n_u: 32,
+            rule: [8, 3, 8, 4],
             tolerance: 1e-7,
-            free_d: false,
-            mass_weight: 1.0,
+            point_weight: 1.0,
+            energy_weight: 1.0,
+            probe_weight: 1.0,
+            floor: 1e-9,
             lm: LmSettings::default(),
         }
+    }
+}
+
+impl LtcFitOptions {
+    /// The rule's shape.
+    pub fn shape(&self) -> RuleShape {
+        let [a, b, c, d] = self.rule;
+        RuleShape::new(a, b, c, d)
     }
 }
 
 /// How well the fitted LTC matches, on the objective's rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FitReport {
-    /// The minimized objective `E = Σ w s²` (module doc); `√E` is an rms relative error.
+    /// The minimized objective (module doc); `√objective` is an rms relative error.
     pub objective: f64,
     /// The paper's error `∫ |y − D|³ dω` with `y = f cos/norm`, on the same rule.
     pub l3: f64,
-    /// The LTC's mass above the horizon (1 when `d = 0`).
-    pub upper_mass: f64,
     /// Residual passes the optimizer spent (all starts).
     pub passes: usize,
 }
@@ -119,18 +132,29 @@ pub struct LtcTexel {
     pub fit: FitReport,
 }
 
-/// The target of one texel: rule directions, normalized weights and `y = f cos/norm`.
+/// The number of parameters: `(ln a, b/a, ln c)`.
+const P: usize = 3;
+
+/// The target of one texel on its rule.
 struct Target {
     dirs: Vec<[f64; 3]>,
-    w: Vec<f64>,
+    /// Per node: `y = f cos/norm` and the node's weight.
     y: Vec<f64>,
+    w: Vec<f64>,
+    probes: Vec<Probe>,
+    probe_weight: f64,
+    floor: f64,
 }
 
 impl Target {
-    fn new(rule: &HemisphereRule, fcos: &dyn Fn(&Node) -> f64, norm: f64) -> Target {
-        let total: f64 = rule.weights.iter().sum();
-        let w = rule.weights.iter().map(|x| x / total).collect();
-        let y = rule
+    fn new(
+        rule: &HemisphereRule,
+        v: [f64; 3],
+        fcos: &dyn Fn(&Node) -> f64,
+        norm: f64,
+        opts: &LtcFitOptions,
+    ) -> Target {
+        let y: Vec<f64> = rule
             .nodes
             .iter()
             .map(|n| {
@@ -142,136 +166,123 @@ impl Target {
                 }
             })
             .collect();
+        let w: Vec<f64> = rule
+            .weights
+            .iter()
+            .zip(&y)
+            .map(|(&dw, &yk)| opts.point_weight * dw / (2.0 * PI) + opts.energy_weight * dw * yk)
+            .collect();
+        let probes = if opts.probe_weight > 0.0 {
+            probes(v, fcos, norm)
+        } else {
+            Vec::new()
+        };
         Target {
             dirs: rule.dirs.clone(),
-            w,
             y,
+            w,
+            probes,
+            probe_weight: opts.probe_weight,
+            floor: opts.floor,
         }
     }
 }
 
-/// `θ → (a, b, c, d)`; `None` where that is not an [`Ltc`].
-fn ltc_of<const P: usize>(t: &[f64; P]) -> Option<Ltc> {
-    let a = t[0].exp();
-    let b = t[1] * a;
-    let c = t[2].exp();
-    let d = if P > 3 { t[3] } else { 0.0 };
-    Ltc::new(a, b, c, d).ok()
-}
+/// The box the parameters stay in: `a`, `c` within `[10⁻⁶, 10⁹]` (lobe widths from 10⁻⁹ to
+/// 10⁶ rad: far beyond every lobe a table holds) and `|b/a| ≤ 10⁶` (the lobe's axis at
+/// least 10⁻⁶ rad above the horizon). Outside it the optimizer's step is rejected, so that a
+/// flat direction of the objective cannot run a width to 0 or ∞.
+const LN_MIN: f64 = -13.815510557964274; // ln 1e-6
+const LN_MAX: f64 = 20.72326583694641; // ln 1e9
+const TILT_MAX: f64 = 1e6;
 
-fn theta_of<const P: usize>(l: &Ltc) -> [f64; P] {
-    let mut t = [0.0; P];
-    t[0] = l.a.ln();
-    t[1] = l.b / l.a;
-    t[2] = l.c.ln();
-    if P > 3 {
-        t[3] = l.d;
+/// `θ → (a, b, c)`; `None` outside the box or where that is not an [`Ltc`].
+fn ltc_of(t: &[f64; P]) -> Option<Ltc> {
+    let inside = (LN_MIN..=LN_MAX).contains(&t[0])
+        && (LN_MIN..=LN_MAX).contains(&t[2])
+        && t[1].abs() <= TILT_MAX;
+    if !inside {
+        return None;
     }
-    t
+    let a = t[0].exp();
+    Ltc::new(a, t[1] * a, t[2].exp(), 0.0).ok()
 }
 
-/// The objective's normal equations at θ (module doc). Per node, with `q = M⁻¹l`,
-/// `k = a − bd` and `D = q_z·c·k/(π|q|⁴)`:
-/// `∂ln D/∂a = 1/k − 4q_x l_x/|q|²`, `∂ln D/∂b = −d/k − 4q_x l_z/|q|²`,
-/// `∂ln D/∂c = 1/c − 4q_y l_y/|q|²`, `∂ln D/∂d = l_x/q_z − b/k − 4q_z l_x/|q|²`,
-/// `∂s/∂ln D = 2Dy/(D + y)²`; and by the chain rule for θ: `∂/∂ln a = a∂_a + b∂_b`,
-/// `∂/∂(b/a) = a∂_b`, `∂/∂ln c = c∂_c`.
-fn normal_eq<const P: usize>(
-    tg: &Target,
-    t: &[f64; P],
-    mass_weight: f64,
-) -> Option<(Normal<P>, Ltc)> {
+fn theta_of(l: &Ltc) -> [f64; P] {
+    [l.a.ln(), l.b / l.a, l.c.ln()]
+}
+
+/// The objective's normal equations at θ (module doc). Per node, with `q = M⁻¹l` and
+/// `D = q_z·ac/(π|q|⁴)` (d = 0): `∂ln D/∂a = 1/a − 4q_x l_x/|q|²`,
+/// `∂ln D/∂b = −4q_x l_z/|q|²`, `∂ln D/∂c = 1/c − 4q_y l_y/|q|²`; for θ by the chain rule
+/// `∂/∂ln a = a∂_a + b∂_b`, `∂/∂(b/a) = a∂_b`, `∂/∂ln c = c∂_c`. A probe's residual
+/// `(X − Y)/(Y + εΩ)` has the gradient of `X` ([`ltc_probe`]) over `Y + εΩ`.
+fn normal_eq(tg: &Target, t: &[f64; P]) -> Option<(Normal<P>, Ltc)> {
     let l = ltc_of(t)?;
-    let (a, b, c, d) = (l.a, l.b, l.c, l.d);
-    let k = a - b * d;
-    let det = c * k;
+    let (a, b, c) = (l.a, l.b, l.c);
+    let det = a * c;
     let mut n = Normal::<P>::zero();
-    for ((dir, &w), &y) in tg.dirs.iter().zip(&tg.w).zip(&tg.y) {
+    for (k, dir) in tg.dirs.iter().enumerate() {
         let q = l.apply_inverse(*dir);
-        let sw = w.sqrt();
         if q[2] <= 0.0 {
-            // outside the LTC's support: s = −1 (or 0 where y = 0 too), flat in θ
-            let s = if y > 0.0 { -1.0 } else { 0.0 };
-            n.add(sw * s, &[0.0; P]);
-            continue;
+            continue; // (not with d = 0 and l above the horizon)
         }
         let l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
         let x = q[2] * det / (PI * l2 * l2);
-        let sum = x + y;
-        let s = (x - y) / sum;
-        let ds = 2.0 * x * y / (sum * sum);
         let i4 = 4.0 / l2;
-        let da = 1.0 / k - i4 * q[0] * dir[0];
-        let db = -d / k - i4 * q[0] * dir[2];
+        let da = 1.0 / a - i4 * q[0] * dir[0];
+        let db = -i4 * q[0] * dir[2];
         let dc = 1.0 / c - i4 * q[1] * dir[1];
-        let mut j = [0.0; P];
-        j[0] = a * da + b * db;
-        j[1] = a * db;
-        j[2] = c * dc;
-        if P > 3 {
-            j[3] = dir[0] / q[2] - b / k - i4 * q[2] * dir[0];
-        }
-        let f = sw * ds;
-        for v in j.iter_mut() {
-            *v *= f;
-        }
-        n.add(sw * s, &j);
+        let y = tg.y[k];
+        let den = y + tg.floor;
+        let sw = tg.w[k].sqrt();
+        let f = sw * x / den;
+        n.add(
+            sw * (x - y) / den,
+            &[f * (a * da + b * db), f * a * db, f * c * dc],
+        );
     }
-    if P > 3 {
-        // the below-horizon mass, m = (1 + a/√(a² + d²))/2
-        let h2 = a * a + d * d;
-        let h = h2.sqrt();
-        let m = 0.5 * (1.0 + a / h);
-        let dm_da = 0.5 * d * d / (h2 * h);
-        let dm_dd = -0.5 * a * d / (h2 * h);
-        let sw = mass_weight.sqrt();
-        let r = sw * (m - 1.0) / (m + 1.0);
-        let dr = sw * 2.0 / ((m + 1.0) * (m + 1.0));
-        let mut j = [0.0; P];
-        j[0] = dr * a * dm_da;
-        j[3] = dr * dm_dd;
-        n.add(r, &j);
+    for p in &tg.probes {
+        let (x, g) = ltc_probe(&l, &p.verts);
+        let den = p.y + tg.floor * p.omega;
+        let sw = (tg.probe_weight * p.omega / (2.0 * PI)).sqrt();
+        let f = sw / den;
+        n.add(f * (x - p.y), &[f * g[0], f * g[1], f * g[2]]);
     }
     n.e.is_finite().then_some((n, l))
 }
 
-/// Fits the LTC on a prepared target from `start`.
+/// Fits the LTC on a prepared target from `start` (its `d` is ignored: the fit holds 0).
 fn fit_target(tg: &Target, start: &Ltc, opts: &LtcFitOptions) -> Option<(Ltc, f64, usize)> {
-    if opts.free_d {
-        let r = minimize(
-            |t: &[f64; 4]| normal_eq(tg, t, opts.mass_weight).map(|x| x.0),
-            theta_of::<4>(start),
-            opts.lm,
-        )?;
-        Some((ltc_of(&r.theta)?, r.e, r.passes))
-    } else {
-        let s0 = Ltc { d: 0.0, ..*start };
-        let s0 = if Ltc::new(s0.a, s0.b, s0.c, 0.0).is_ok() {
-            s0
-        } else {
-            Ltc::IDENTITY
-        };
-        let r = minimize(
-            |t: &[f64; 3]| normal_eq(tg, t, 0.0).map(|x| x.0),
-            theta_of::<3>(&s0),
-            opts.lm,
-        )?;
-        Some((ltc_of(&r.theta)?, r.e, r.passes))
-    }
+    let s0 = Ltc::new(start.a, start.b, start.c, 0.0).unwrap_or(Ltc::IDENTITY);
+    let r = minimize(|t: &[f64; P]| normal_eq(tg, t).map(|x| x.0), theta_of(&s0), opts.lm)?;
+    Some((ltc_of(&r.theta)?, r.e, r.passes))
 }
 
-/// The objective's value and the L³ error of `ltc` on a target.
-fn report(tg: &Target, ltc: &Ltc, rule: &HemisphereRule, norm: f64) -> (f64, f64) {
-    let total: f64 = rule.weights.iter().sum();
-    let (mut e, mut l3) = (0.0, 0.0);
-    for ((dir, &w), &y) in tg.dirs.iter().zip(&tg.w).zip(&tg.y) {
-        let x = ltc.eval(*dir);
-        let s = if x + y > 0.0 { (x - y) / (x + y) } else { 0.0 };
-        e += w * s * s;
-        let dd = (x - y).abs() * norm;
-        l3 += w * total * dd * dd * dd;
+/// The L³ error of `ltc` on a target (per steradian of `f cos`, not of the normalized lobe).
+fn l3_error(tg: &Target, rule: &HemisphereRule, ltc: &Ltc, norm: f64) -> f64 {
+    let mut l3 = 0.0;
+    for ((dir, &dw), &y) in tg.dirs.iter().zip(&rule.weights).zip(&tg.y) {
+        let d = (ltc.eval(*dir) - y).abs() * norm;
+        l3 += dw * d * d * d;
     }
-    (e, l3)
+    l3
+}
+
+/// The LTC whose lobe sits on the mirror direction of a microfacet lobe of angular width
+/// `scale`: with the mirror at elevation `e₀` (`sin e₀ = μ`), `M⁻¹ = [[a, 0, b], [0, c, 0],
+/// [0, 0, 1]]` puts the cosine's peak where `ax + bz = 0` (so `b = a·cot e₀`), with angular
+/// half-width `sin²e₀/a` in the plane of incidence and `sin e₀/c` across it (expanding
+/// `M⁻¹ω` about the axis). A microfacet lobe of width α about h = n reflects to widths
+/// `2α` in the plane (a rotation of h turns l twice as far) and `2μα` across it
+/// (`δl = 2(v·h)δh` for δh ⊥ the plane, and v·h = μ at h = n), hence
+/// `a = μ²/(2α)`, `b = μ√(1 − μ²)/(2α)`, `c = 1/(2α)` (derived here).
+fn mirror_guess(mu: f64, scale: f64) -> Ltc {
+    let s = scale.clamp(1e-9, 0.5);
+    let a = (mu * mu / (2.0 * s)).max(1e-9);
+    let b = mu * (1.0 - mu * mu).max(0.0).sqrt() / (2.0 * s);
+    let c = 1.0 / (2.0 * s);
+    Ltc::new(a, b, c, 0.0).unwrap_or(Ltc::IDENTITY)
 }
 
 /// Widths tried at the start of a line: LTCs `diag(1/m, 1/m, 1)` with `m` these multiples
@@ -305,7 +316,8 @@ pub fn fit_ltc(
     if rule.is_empty() {
         return Err(LtcError::Domain("the hemisphere rule has no nodes".into()));
     }
-    let tg = Target::new(&rule, fcos, norm);
+    let v = [(1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu];
+    let tg = Target::new(&rule, v, fcos, norm, opts);
     let scale = match warp {
         LobeWarp::TanOverScale(s) | LobeWarp::TanOverScaleVGroove(s) => s,
         LobeWarp::SheenFlank(_) | LobeWarp::Linear => 1.0,
@@ -317,6 +329,12 @@ pub fn fit_ltc(
             best = Some((l, e));
         }
     };
+    // the mirror-lobe guess (module doc): always tried
+    let guess = mirror_guess(mu, scale);
+    if let Some((l, e, p)) = fit_target(&tg, &guess, opts) {
+        passes += p;
+        consider(l, e);
+    }
     match start {
         Some(s) => {
             if let Some((l, e, p)) = fit_target(&tg, s, opts) {
@@ -340,18 +358,16 @@ pub fn fit_ltc(
             }
         }
     }
-    let Some((ltc, _)) = best else {
+    let Some((ltc, objective)) = best else {
         return Err(LtcError::Domain(
             "the fit found no valid LTC (the objective is not finite at any start)".into(),
         ));
     };
-    let (objective, l3) = report(&tg, &ltc, &rule, norm);
     Ok((
         ltc,
         FitReport {
             objective,
-            l3,
-            upper_mass: ltc.upper_hemisphere_mass(),
+            l3: l3_error(&tg, &rule, &ltc, norm),
             passes,
         },
     ))
@@ -471,7 +487,7 @@ pub fn fit_grid(
     alphas: &[f64],
     opts: &LtcFitOptions,
 ) -> Result<LtcGrid, LtcError> {
-    let shape = RuleShape::new(opts.n_phi, opts.n_u);
+    let shape = opts.shape();
     let lines: Vec<Result<Vec<LtcTexel>, LtcError>> = alphas
         .par_iter()
         .map(|&alpha| {

@@ -22,30 +22,52 @@ use crate::hemisphere::tensor::PhiWarp;
 use crate::hemisphere::{tan_theta_h_max, LobeWarp, Node};
 use crate::quadrature::gauss::gauss_legendre;
 
-/// Gauss–Legendre tables for a rule of `n_phi × n_u` nodes, built once and shared by every
-/// texel of a table.
+/// The shape of a rule: composite Gauss–Legendre, `phi_panels` equal panels of
+/// `phi_order` nodes in φ's variable and `u_panels` of `u_order` in the inner one, built
+/// once and shared by every texel of a table. A cell is one φ panel × one inner panel.
 #[derive(Clone, Debug)]
 pub struct RuleShape {
     phi: (Vec<f64>, Vec<f64>),
     u: (Vec<f64>, Vec<f64>),
+    phi_panels: usize,
+    u_panels: usize,
 }
 
 impl RuleShape {
-    /// `n_phi` nodes in φ over [0, π], `n_u` in the inner variable (both ≥ 2).
-    pub fn new(n_phi: usize, n_u: usize) -> RuleShape {
+    /// A composite rule (each count at least 1, orders at least 2).
+    pub fn new(phi_panels: usize, phi_order: usize, u_panels: usize, u_order: usize) -> RuleShape {
         RuleShape {
-            phi: gauss_legendre(n_phi.max(2)),
-            u: gauss_legendre(n_u.max(2)),
+            phi: gauss_legendre(phi_order.max(2)),
+            u: gauss_legendre(u_order.max(2)),
+            phi_panels: phi_panels.max(1),
+            u_panels: u_panels.max(1),
         }
     }
 
     /// Nodes per rule.
     pub fn len(&self) -> usize {
-        self.phi.0.len() * self.u.0.len()
+        self.phi.0.len() * self.u.0.len() * self.phi_panels * self.u_panels
     }
 
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// `(φ panels, inner panels)`: the cells of the rule.
+    pub fn cells(&self) -> (usize, usize) {
+        (self.phi_panels, self.u_panels)
+    }
+
+    /// The composite rule's nodes on [0, 1] with weights, and the panel of each.
+    fn composite(gl: &(Vec<f64>, Vec<f64>), panels: usize) -> Vec<(f64, f64, usize)> {
+        let h = 1.0 / panels as f64;
+        let mut out = Vec::with_capacity(gl.0.len() * panels);
+        for p in 0..panels {
+            for (&x, &w) in gl.0.iter().zip(&gl.1) {
+                out.push((h * (p as f64 + 0.5 * (x + 1.0)), 0.5 * h * w, p));
+            }
+        }
+        out
     }
 }
 
@@ -58,6 +80,8 @@ pub struct HemisphereRule {
     pub weights: Vec<f64>,
     /// The half-vector nodes, for BRDFs written as functions of [`Node`].
     pub nodes: Vec<Node>,
+    /// The cell of each node, `φ panel × u_panels + inner panel`.
+    pub cells: Vec<u32>,
 }
 
 impl HemisphereRule {
@@ -72,18 +96,17 @@ impl HemisphereRule {
         r.dirs.reserve(n);
         r.weights.reserve(n);
         r.nodes.reserve(n);
-        let (xs, ws) = (&shape.phi.0, &shape.phi.1);
-        let (xu, wu) = (&shape.u.0, &shape.u.1);
-        for (&x, &wx) in xs.iter().zip(ws) {
+        let phis = RuleShape::composite(&shape.phi, shape.phi_panels);
+        let us = RuleShape::composite(&shape.u, shape.u_panels);
+        for &(x01, wx, pp) in &phis {
             // s ∈ [−S, S]
-            let s = pw.big_s * x;
+            let s = pw.big_s * (2.0 * x01 - 1.0);
             let phi = std::f64::consts::FRAC_PI_2 + pw.c * s.sinh();
-            let dphi = pw.c * s.cosh() * pw.big_s * wx;
+            let dphi = pw.c * s.cosh() * 2.0 * pw.big_s * wx;
             let (sp, cp) = phi.sin_cos();
             let tmax = tan_theta_h_max(pw.tan_v, cp);
             let thmax = tmax.atan();
-            for (&y, &wy) in xu.iter().zip(wu) {
-                let t01 = 0.5 * (y + 1.0);
+            for &(t01, wy, pu) in &us {
                 // (sin θh, cos θh, dθh per unit of the [0, 1] variable)
                 let (sin_h, cos_h, dth) = match warp {
                     LobeWarp::TanOverScale(sc) | LobeWarp::TanOverScaleVGroove(sc) => {
@@ -119,11 +142,12 @@ impl HemisphereRule {
                 // computes it without cancellation near the horizon
                 let len = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
                 let l = [l[0] / len, l[1] / len, node.n_dot_l];
-                // 0.5·wy: the [0, 1] variable's Gauss weight; ×2 for the mirrored half
-                let w = 2.0 * dphi * 0.5 * wy * dth * 4.0 * node.v_dot_h * sin_h;
+                // wy: the [0, 1] variable's weight; ×2 for the mirrored half
+                let w = 2.0 * dphi * wy * dth * 4.0 * node.v_dot_h * sin_h;
                 r.dirs.push(l);
                 r.weights.push(w);
                 r.nodes.push(node);
+                r.cells.push((pp * shape.u_panels + pu) as u32);
             }
         }
         r
@@ -146,7 +170,7 @@ mod tests {
     /// view and warp (Gauss rules on smooth integrands; 32 × 48 nodes: relative 1e-6).
     #[test]
     fn weights_integrate_the_hemisphere() {
-        let shape = RuleShape::new(32, 48);
+        let shape = RuleShape::new(4, 8, 4, 12);
         for mu in [1.0, 0.7, 0.2, 0.01] {
             for warp in [
                 LobeWarp::TanOverScale(0.3),

@@ -11,3 +11,6 @@ pub mod ltc_polygon;
 pub mod ltc_rule;
 pub mod sheen_azimuth;
 pub mod vgroove;
+pub mod ltc_check;
+pub mod ltc_reference;
+pub mod ltc_probe;
