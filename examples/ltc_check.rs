@@ -109,8 +109,8 @@ fn ground_truth(lights: &[PolygonLight], quick: bool, at_texels: bool) -> Vec<Ca
         .map(|&(light, mu, r)| {
             let alpha = r * r;
             let brdf = ggx(alpha).expect("alpha in range");
-            let e = lit_reference(&brdf, alpha, mu, &lights[light], TRUTH_TOL)
-                .expect("valid light");
+            let e =
+                lit_reference(&brdf, alpha, mu, &lights[light], TRUTH_TOL).expect("valid light");
             Case {
                 light,
                 mu,
@@ -215,6 +215,9 @@ fn main() {
     if let Some(v) = value("--floor") {
         opts.floor = v.parse().expect("--floor F");
     }
+    if flag("--d0") {
+        opts.free_d = false;
+    }
     if let Some(v) = value("--point") {
         opts.point_weight = v.parse().expect("--point W");
     }
@@ -222,7 +225,10 @@ fn main() {
         opts.probe_weight = v.parse().expect("--probe W");
     }
     if let Some(v) = value("--rule") {
-        let r: Vec<usize> = v.split(',').map(|x| x.parse().expect("--rule A,B,C,D")).collect();
+        let r: Vec<usize> = v
+            .split(',')
+            .map(|x| x.parse().expect("--rule A,B,C,D"))
+            .collect();
         opts.rule = [r[0], r[1], r[2], r[3]];
     }
     println!("fit options: {opts:?}");
@@ -231,7 +237,10 @@ fn main() {
     let grid = if flag("--no-timing") {
         let t0 = Instant::now();
         let g = fit(&opts);
-        println!("64^2 GGX fit: {:.3} s wall (default pool)", t0.elapsed().as_secs_f64());
+        println!(
+            "64^2 GGX fit: {:.3} s wall (default pool)",
+            t0.elapsed().as_secs_f64()
+        );
         g
     } else {
         let mut walls = Vec::new();
@@ -260,25 +269,61 @@ fn main() {
         passes as f64 / grid.texels.len() as f64
     );
 
+    if flag("--fit-only") {
+        return;
+    }
+
     // 2. conditioning and norm
     let mut worst_ca: f64 = 0.0;
+    let mut worst_cam: f64 = 0.0;
     let mut worst_c: f64 = 0.0;
     let mut all_finite = true;
     for (i, t) in grid.texels.iter().enumerate() {
         let alpha = grid.alphas[i % grid.alphas.len()];
+        let mu = grid.mus[i / grid.alphas.len()];
         let c = t.ltc.condition_number();
         all_finite &= [t.ltc.a, t.ltc.b, t.ltc.c, t.ltc.d, t.norm, t.fresnel]
             .iter()
             .all(|x| x.is_finite());
         worst_c = worst_c.max(c);
-        worst_ca = worst_ca.max(c * alpha);
+        if mu >= 0.17 {
+            worst_ca = worst_ca.max(c * alpha);
+        }
+        worst_cam = worst_cam.max(c * alpha * mu);
     }
     println!(
-        "conditioning: every entry finite: {all_finite}; largest cond(M^-1) {worst_c:.3e}, largest cond*alpha {worst_ca:.3}"
+        "conditioning: every entry finite: {all_finite}; largest cond(M^-1) {worst_c:.3e}; largest cond*alpha (cos theta >= 0.17) {worst_ca:.3}; largest cond*alpha*mu {worst_cam:.3}"
+    );
+    // every bilinear lookup inside every cell must give an invertible M⁻¹: 9 × 9 points a cell
+    let table = HeitzTable::from_grid(&grid).expect("table");
+    let n = HEITZ_SIZE;
+    let mut bad = 0usize;
+    let mut worst_det = f64::INFINITY;
+    for t in 0..n - 1 {
+        for a in 0..n - 1 {
+            for i in 0..=8 {
+                for j in 0..=8 {
+                    let x = (t as f64 + i as f64 / 8.0) / (n - 1) as f64;
+                    let r = (a as f64 + j as f64 / 8.0) / (n - 1) as f64;
+                    let (t1, _) = table.lookup(1.0 - x * x, r).expect("lookup");
+                    let det = t1[0] * t1[3] - t1[1] * t1[2];
+                    worst_det = worst_det.min(det / (t1[0].abs() * t1[3].abs()));
+                    if brdfbake::model::ltc::Ltc::from_heitz_texel(t1).is_err() {
+                        bad += 1;
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "interpolated lookups (9 x 9 a cell): {bad} not invertible; smallest det/(|m00 m22|) {worst_det:.3e}"
     );
     let mut worst_norm: f64 = 0.0;
     for (i, t) in grid.texels.iter().enumerate() {
-        let (mu, alpha) = (grid.mus[i / grid.alphas.len()], grid.alphas[i % grid.alphas.len()]);
+        let (mu, alpha) = (
+            grid.mus[i / grid.alphas.len()],
+            grid.alphas[i % grid.alphas.len()],
+        );
         let (e, _, _) = directional_albedo(&ggx(alpha).unwrap(), mu, opts.tolerance);
         worst_norm = worst_norm.max((e[0] - t.norm).abs());
     }
@@ -290,7 +335,9 @@ fn main() {
     for (i, t) in grid.texels.iter().enumerate() {
         worst_heitz_norm = worst_heitz_norm.max((js.ltc_2[i][0] - t.norm).abs() / t.norm);
     }
-    println!("Heitz's published norm vs brdfbake's: largest relative difference {worst_heitz_norm:.3e}");
+    println!(
+        "Heitz's published norm vs brdfbake's: largest relative difference {worst_heitz_norm:.3e}"
+    );
 
     // 3. the lit error
     let lights = test_lights();
@@ -307,8 +354,14 @@ fn main() {
             "Heitz ltc.inc".into(),
             HeitzTable::from_inc(heitz_inc).expect("ltc.inc"),
         ),
-        ("Heitz ltc.js = three.js (f32)".into(), js.stored(TexelStorage::F32)),
-        ("three.js HalfFloat (f16)".into(), js.stored(TexelStorage::F16)),
+        (
+            "Heitz ltc.js = three.js (f32)".into(),
+            js.stored(TexelStorage::F32),
+        ),
+        (
+            "three.js HalfFloat (f16)".into(),
+            js.stored(TexelStorage::F16),
+        ),
     ];
     if let Some(p) = value("--fitltc") {
         let text = std::fs::read_to_string(&p).expect("--fitltc file");
@@ -335,7 +388,10 @@ fn main() {
                 let (ltc, norm, _) = t.ltc_at(c.mu, c.r).unwrap();
                 let l = &lights[c.light];
                 let v = lit_ltc(&ltc, norm, l).unwrap();
-                let m = l.verts.iter().fold([0.0; 3], |a, v| [a[0] + v[0], a[1] + v[1], a[2] + v[2]]);
+                let m = l
+                    .verts
+                    .iter()
+                    .fold([0.0; 3], |a, v| [a[0] + v[0], a[1] + v[1], a[2] + v[2]]);
                 let cz = m[2] / (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
                 s += &format!(
                     "{ti},{},{},{},{:e},{:e},{},{},{cz}\n",

@@ -280,11 +280,7 @@ pub fn error_stats(cases: &[(f64, f64)]) -> ErrorStats {
         } else {
             e.iter().sum::<f64>() / n as f64
         },
-        zeros: if n == 0 {
-            0.0
-        } else {
-            zeros as f64 / n as f64
-        },
+        zeros: if n == 0 { 0.0 } else { zeros as f64 / n as f64 },
     }
 }
 

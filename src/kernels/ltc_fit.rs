@@ -71,6 +71,8 @@ pub struct LtcFitOptions {
     pub rule: [usize; 4],
     /// Absolute tolerance of the norm and Fresnel integrals.
     pub tolerance: f64,
+    /// Fit `d` (the tilt of the LTC's support) too; otherwise `d = 0`.
+    pub free_d: bool,
     /// Weight of the nodes' solid-angle term: node k weighs `point_weight·dω_k/2π`.
     pub point_weight: f64,
     /// Weight of the nodes' energy term: node k weighs `energy_weight·y_k·dω_k`.
@@ -88,10 +90,11 @@ pub struct LtcFitOptions {
 impl Default for LtcFitOptions {
     fn default() -> Self {
         LtcFitOptions {
-            rule: [8, 3, 8, 4],
+            rule: [6, 3, 6, 4],
             tolerance: 1e-7,
+            free_d: true,
             point_weight: 1.0,
-            energy_weight: 1.0,
+            energy_weight: 10.0,
             probe_weight: 1.0,
             floor: 1e-9,
             lm: LmSettings::default(),
@@ -132,8 +135,8 @@ pub struct LtcTexel {
     pub fit: FitReport,
 }
 
-/// The number of parameters: `(ln a, b/a, ln c)`.
-const P: usize = 3;
+/// The number of parameters: `(ln a, b/a, ln c, d)`.
+const P: usize = 4;
 
 /// The target of one texel on its rule.
 struct Target {
@@ -144,6 +147,7 @@ struct Target {
     probes: Vec<Probe>,
     probe_weight: f64,
     floor: f64,
+    free_d: bool,
 }
 
 impl Target {
@@ -173,7 +177,13 @@ impl Target {
             .map(|(&dw, &yk)| opts.point_weight * dw / (2.0 * PI) + opts.energy_weight * dw * yk)
             .collect();
         let probes = if opts.probe_weight > 0.0 {
-            probes(v, fcos, norm)
+            // the BRDF's peak among the nodes
+            let peak = y
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
+                .map(|(k, _)| rule.dirs[k]);
+            probes(v, fcos, norm, peak, opts.floor)
         } else {
             Vec::new()
         };
@@ -184,62 +194,84 @@ impl Target {
             probes,
             probe_weight: opts.probe_weight,
             floor: opts.floor,
+            free_d: opts.free_d,
         }
     }
 }
 
 /// The box the parameters stay in: `a`, `c` within `[10⁻⁶, 10⁹]` (lobe widths from 10⁻⁹ to
-/// 10⁶ rad: far beyond every lobe a table holds) and `|b/a| ≤ 10⁶` (the lobe's axis at
-/// least 10⁻⁶ rad above the horizon). Outside it the optimizer's step is rejected, so that a
-/// flat direction of the objective cannot run a width to 0 or ∞.
+/// 10⁶ rad: beyond every lobe a table holds), the axis' tilt `b/a` within `[0, 10⁶]`
+/// (leaning toward the mirror side, at least 10⁻⁶ rad above the horizon) and the
+/// support's tilt `d` within `[−20, 0]`. The signs are what keeps a table usable between
+/// its texels: a shader interpolates the stored `(a, d, b, 1)/c` linearly, and with
+/// `b ≥ 0 ≥ d` at every texel every interpolated `M⁻¹` has `det/c = (a + b·|d|)/c² > 0`
+/// (each factor keeps its sign under convex combinations); with mixed signs two valid
+/// neighbours can interpolate to a singular matrix (seen: thousands of lookups in a 64²
+/// table fitted without them).
 const LN_MIN: f64 = -13.815510557964274; // ln 1e-6
 const LN_MAX: f64 = 20.72326583694641; // ln 1e9
 const TILT_MAX: f64 = 1e6;
+const D_MIN: f64 = -20.0;
 
-/// `θ → (a, b, c)`; `None` outside the box or where that is not an [`Ltc`].
+/// The box as `(lower, upper)` bounds of θ; `d` is held at 0 without `free_d`.
+fn bounds(free_d: bool) -> ([f64; P], [f64; P]) {
+    let dlo = if free_d { D_MIN } else { 0.0 };
+    ([LN_MIN, 0.0, LN_MIN, dlo], [LN_MAX, TILT_MAX, LN_MAX, 0.0])
+}
+
+/// `θ → (a, b, c, d)`; `None` where that is not an [`Ltc`].
 fn ltc_of(t: &[f64; P]) -> Option<Ltc> {
-    let inside = (LN_MIN..=LN_MAX).contains(&t[0])
-        && (LN_MIN..=LN_MAX).contains(&t[2])
-        && t[1].abs() <= TILT_MAX;
-    if !inside {
+    if !t.iter().all(|x| x.is_finite()) {
         return None;
     }
     let a = t[0].exp();
-    Ltc::new(a, t[1] * a, t[2].exp(), 0.0).ok()
+    Ltc::new(a, t[1] * a, t[2].exp(), t[3]).ok()
 }
 
 fn theta_of(l: &Ltc) -> [f64; P] {
-    [l.a.ln(), l.b / l.a, l.c.ln()]
+    [l.a.ln(), l.b / l.a, l.c.ln(), l.d]
 }
 
-/// The objective's normal equations at θ (module doc). Per node, with `q = M⁻¹l` and
-/// `D = q_z·ac/(π|q|⁴)` (d = 0): `∂ln D/∂a = 1/a − 4q_x l_x/|q|²`,
-/// `∂ln D/∂b = −4q_x l_z/|q|²`, `∂ln D/∂c = 1/c − 4q_y l_y/|q|²`; for θ by the chain rule
-/// `∂/∂ln a = a∂_a + b∂_b`, `∂/∂(b/a) = a∂_b`, `∂/∂ln c = c∂_c`. A probe's residual
-/// `(X − Y)/(Y + εΩ)` has the gradient of `X` ([`ltc_probe`]) over `Y + εΩ`.
+/// The objective's normal equations at θ (module doc). Per node, with `q = M⁻¹l`,
+/// `k = a − bd` and `D = q_z·ck/(π|q|⁴)`: `∂ln D/∂a = 1/k − 4q_x l_x/|q|²`,
+/// `∂ln D/∂b = −d/k − 4q_x l_z/|q|²`, `∂ln D/∂c = 1/c − 4q_y l_y/|q|²`,
+/// `∂ln D/∂d = l_x/q_z − b/k − 4q_z l_x/|q|²`; for θ by the chain rule `∂/∂ln a = a∂_a +
+/// b∂_b`, `∂/∂(b/a) = a∂_b`, `∂/∂ln c = c∂_c`. Where `q_z ≤ 0` (outside the support) the
+/// residual is `−y/(y + ε)`, flat in θ. A probe's residual `(X − Y)/(Y + εΩ)` has the
+/// gradient of `X` ([`ltc_probe`]) over `Y + εΩ`. Without `free_d` the d column is 0, so
+/// the solver never moves d.
 fn normal_eq(tg: &Target, t: &[f64; P]) -> Option<(Normal<P>, Ltc)> {
     let l = ltc_of(t)?;
-    let (a, b, c) = (l.a, l.b, l.c);
-    let det = a * c;
+    let (a, b, c, d) = (l.a, l.b, l.c, l.d);
+    let k = a - b * d;
+    let det = c * k;
+    let dmask = if tg.free_d { 1.0 } else { 0.0 };
     let mut n = Normal::<P>::zero();
-    for (k, dir) in tg.dirs.iter().enumerate() {
+    for (i, dir) in tg.dirs.iter().enumerate() {
+        let y = tg.y[i];
+        let den = y + tg.floor;
+        let sw = tg.w[i].sqrt();
         let q = l.apply_inverse(*dir);
         if q[2] <= 0.0 {
-            continue; // (not with d = 0 and l above the horizon)
+            n.add(-sw * y / den, &[0.0; P]);
+            continue;
         }
         let l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
         let x = q[2] * det / (PI * l2 * l2);
         let i4 = 4.0 / l2;
-        let da = 1.0 / a - i4 * q[0] * dir[0];
-        let db = -i4 * q[0] * dir[2];
+        let da = 1.0 / k - i4 * q[0] * dir[0];
+        let db = -d / k - i4 * q[0] * dir[2];
         let dc = 1.0 / c - i4 * q[1] * dir[1];
-        let y = tg.y[k];
-        let den = y + tg.floor;
-        let sw = tg.w[k].sqrt();
+        let dd = dir[0] / q[2] - b / k - i4 * q[2] * dir[0];
         let f = sw * x / den;
         n.add(
             sw * (x - y) / den,
-            &[f * (a * da + b * db), f * a * db, f * c * dc],
+            &[
+                f * (a * da + b * db),
+                f * a * db,
+                f * c * dc,
+                f * dd * dmask,
+            ],
         );
     }
     for p in &tg.probes {
@@ -247,15 +279,23 @@ fn normal_eq(tg: &Target, t: &[f64; P]) -> Option<(Normal<P>, Ltc)> {
         let den = p.y + tg.floor * p.omega;
         let sw = (tg.probe_weight * p.omega / (2.0 * PI)).sqrt();
         let f = sw / den;
-        n.add(f * (x - p.y), &[f * g[0], f * g[1], f * g[2]]);
+        n.add(
+            f * (x - p.y),
+            &[f * g[0], f * g[1], f * g[2], f * g[3] * dmask],
+        );
     }
     n.e.is_finite().then_some((n, l))
 }
 
-/// Fits the LTC on a prepared target from `start` (its `d` is ignored: the fit holds 0).
+/// Fits the LTC on a prepared target from `start` (with `d = 0` unless `free_d`).
 fn fit_target(tg: &Target, start: &Ltc, opts: &LtcFitOptions) -> Option<(Ltc, f64, usize)> {
-    let s0 = Ltc::new(start.a, start.b, start.c, 0.0).unwrap_or(Ltc::IDENTITY);
-    let r = minimize(|t: &[f64; P]| normal_eq(tg, t).map(|x| x.0), theta_of(&s0), opts.lm)?;
+    let s0 = Ltc::new(start.a, start.b, start.c, start.d).unwrap_or(Ltc::IDENTITY);
+    let r = minimize(
+        |t: &[f64; P]| normal_eq(tg, t).map(|x| x.0),
+        theta_of(&s0),
+        bounds(opts.free_d),
+        opts.lm,
+    )?;
     Some((ltc_of(&r.theta)?, r.e, r.passes))
 }
 
@@ -329,33 +369,37 @@ pub fn fit_ltc(
             best = Some((l, e));
         }
     };
-    // the mirror-lobe guess (module doc): always tried
-    let guess = mirror_guess(mu, scale);
-    if let Some((l, e, p)) = fit_target(&tg, &guess, opts) {
-        passes += p;
-        consider(l, e);
-    }
+    // the starts: the mirror-lobe guess (module doc) and the previous texel's LTC, or the
+    // fixed widths at a line's first texel; the optimizer runs from the best of them
+    let mut starts = vec![mirror_guess(mu, scale)];
     match start {
-        Some(s) => {
-            if let Some((l, e, p)) = fit_target(&tg, s, opts) {
-                passes += p;
-                consider(l, e);
-            }
-        }
+        Some(s) => starts.push(*s),
         None => {
             for m in START_WIDTHS {
                 let w = (m * scale).min(1.0);
-                let s = Ltc {
+                starts.push(Ltc {
                     a: 1.0 / w,
                     b: 0.0,
                     c: 1.0 / w,
                     d: 0.0,
-                };
-                if let Some((l, e, p)) = fit_target(&tg, &s, opts) {
-                    passes += p;
-                    consider(l, e);
-                }
+                });
             }
+        }
+    }
+    let mut first: Option<(Ltc, f64)> = None;
+    for s0 in &starts {
+        let t = theta_of(s0);
+        if let Some((n, l)) = normal_eq(&tg, &t) {
+            passes += 1;
+            if first.as_ref().is_none_or(|b| n.e < b.1) {
+                first = Some((l, n.e));
+            }
+        }
+    }
+    if let Some((s0, _)) = first {
+        if let Some((l, e, p)) = fit_target(&tg, &s0, opts) {
+            passes += p;
+            consider(l, e);
         }
     }
     let Some((ltc, objective)) = best else {
@@ -373,8 +417,32 @@ pub fn fit_ltc(
     ))
 }
 
+/// The fit's objective at a given LTC (with `d` as given): how another table's texel fares
+/// under the same measure.
+pub fn objective_at(
+    fcos: &dyn Fn(&Node) -> f64,
+    mu: f64,
+    warp: LobeWarp,
+    norm: f64,
+    ltc: &Ltc,
+    shape: &RuleShape,
+    opts: &LtcFitOptions,
+) -> Result<f64, LtcError> {
+    if !(mu > 0.0 && mu <= 1.0 && norm > 0.0 && norm.is_finite()) {
+        return Err(LtcError::Domain(format!(
+            "objective_at needs mu in (0, 1] and norm > 0, got {mu}, {norm}"
+        )));
+    }
+    let rule = HemisphereRule::new(shape, mu, warp);
+    let v = [(1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu];
+    let tg = Target::new(&rule, v, fcos, norm, opts);
+    normal_eq(&tg, &theta_of(ltc))
+        .map(|(n, _)| n.e)
+        .ok_or_else(|| LtcError::Domain("the LTC is outside the fit's parameter box".into()))
+}
+
 /// `f cos` of a brdfbake BRDF at a half-vector node.
-fn brdf_fcos(brdf: &Brdf) -> impl Fn(&Node) -> f64 + '_ {
+pub fn brdf_fcos(brdf: &Brdf) -> impl Fn(&Node) -> f64 + '_ {
     let wd = brdf.diffuse_weight / PI;
     move |n: &Node| brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n)) + wd * n.n_dot_l
 }

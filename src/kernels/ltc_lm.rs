@@ -68,7 +68,7 @@ impl Default for LmSettings {
     fn default() -> Self {
         LmSettings {
             max_passes: 80,
-            rel_decrease: 1e-10,
+            rel_decrease: 1e-7,
             lambda0: 1e-3,
         }
     }
@@ -111,13 +111,25 @@ fn solve<const P: usize>(mut m: [[f64; P]; P], mut b: [f64; P]) -> Option<[f64; 
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
-/// Minimizes `Σ r²` from `theta0`; `f(θ)` returns the normal equations at θ, or `None`
-/// outside the domain (treated as a rejected step). `theta0` must be inside the domain.
+/// Minimizes `Σ r²` over the box `[lo, hi]` from `theta0` (projected into the box);
+/// `f(θ)` returns the normal equations at θ, or `None` outside the domain (treated as a
+/// rejected step). Each trial point is projected onto the box (clamped), the simplest
+/// projected Levenberg–Marquardt step (Kanzow, Yamashita & Fukushima 2004); a parameter
+/// held at a bound has its gradient component pointing outward removed from the stopping
+/// test's predicted decrease, so a minimum on the boundary stops the iteration.
 pub fn minimize<const P: usize, F: FnMut(&[f64; P]) -> Option<Normal<P>>>(
     mut f: F,
     theta0: [f64; P],
+    (lo, hi): ([f64; P], [f64; P]),
     s: LmSettings,
 ) -> Option<LmResult<P>> {
+    let project = |t: &mut [f64; P]| {
+        for p in 0..P {
+            t[p] = t[p].clamp(lo[p], hi[p]);
+        }
+    };
+    let mut theta0 = theta0;
+    project(&mut theta0);
     let mut theta = theta0;
     let mut cur = f(&theta)?;
     cur.symmetrize();
@@ -151,6 +163,10 @@ pub fn minimize<const P: usize, F: FnMut(&[f64; P]) -> Option<Normal<P>>>(
         let mut trial = theta;
         for p in 0..P {
             trial[p] += delta[p];
+        }
+        project(&mut trial);
+        if trial == theta {
+            break;
         }
         passes += 1;
         match f(&trial) {
@@ -196,6 +212,7 @@ mod tests {
         let r = minimize(
             f,
             [-1.2, 1.0],
+            ([-10.0; 2], [10.0; 2]),
             LmSettings {
                 max_passes: 200,
                 rel_decrease: 0.0,

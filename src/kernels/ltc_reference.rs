@@ -137,7 +137,9 @@ pub fn polygon_integral(
         });
     }
     // inward edge normals: orient by the polygon's mean direction
-    let mean = p.iter().fold([0.0; 3], |m, v| [m[0] + v[0], m[1] + v[1], m[2] + v[2]]);
+    let mean = p
+        .iter()
+        .fold([0.0; 3], |m, v| [m[0] + v[0], m[1] + v[1], m[2] + v[2]]);
     let orient = (0..n)
         .map(|i| dot(cross(p[i], p[(i + 1) % n]), mean))
         .sum::<f64>();
@@ -308,7 +310,10 @@ mod tests {
             let r = polygon_integral(&|w| w[2].max(0.0) / PI, &q, center, scale, 1e-10).unwrap();
             assert!((r.value - want).abs() < 1e-9 * want, "{r:?} {want}");
         }
-        let cl = clip_to_halfspace(&[[1.0, 0.0, 1.0], [0.0, 1.0, -1.0], [-1.0, 0.0, 1.0]], [0.0, 0.0, 1.0]);
+        let cl = clip_to_halfspace(
+            &[[1.0, 0.0, 1.0], [0.0, 1.0, -1.0], [-1.0, 0.0, 1.0]],
+            [0.0, 0.0, 1.0],
+        );
         assert_eq!(cl.len(), 4);
     }
 }

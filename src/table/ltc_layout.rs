@@ -140,7 +140,10 @@ impl HeitzTable {
         // continuous texel coordinates: u·n − 0.5 with u = x(n − 1)/n + 0.5/n is x(n − 1)
         let fx = uv[0] * (n - 1) as f64;
         let fy = uv[1] * (n - 1) as f64;
-        let (x0, y0) = (fx.floor().min((n - 2) as f64), fy.floor().min((n - 2) as f64));
+        let (x0, y0) = (
+            fx.floor().min((n - 2) as f64),
+            fy.floor().min((n - 2) as f64),
+        );
         let (tx, ty) = (fx - x0, fy - y0);
         let (x0, y0) = (x0 as usize, y0 as usize);
         let at = |v: &Vec<[f64; 4]>, x: usize, y: usize| v[x + y * n];
@@ -290,7 +293,13 @@ pub fn parse_array(text: &str, name: &str) -> Result<Vec<f64>, LtcError> {
     let end = end.ok_or_else(|| LtcError::Domain(format!("array {name:?} is not closed")))?;
     let inner: String = body[1..end]
         .chars()
-        .map(|c| if matches!(c, '[' | ']' | '{' | '}') { ',' } else { c })
+        .map(|c| {
+            if matches!(c, '[' | ']' | '{' | '}') {
+                ','
+            } else {
+                c
+            }
+        })
         .collect();
     let mut out = Vec::new();
     for tok in inner.split(',') {
@@ -319,7 +328,10 @@ mod tests {
     #[test]
     fn parses_the_published_forms() {
         let js = "var g_ltc_1 = [\n1, 0, - 4.5e-07, 2e-05, \n];";
-        assert_eq!(parse_array(js, "g_ltc_1").unwrap(), vec![1.0, 0.0, -4.5e-7, 2e-5]);
+        assert_eq!(
+            parse_array(js, "g_ltc_1").unwrap(),
+            vec![1.0, 0.0, -4.5e-7, 2e-5]
+        );
         let inc = "// tabMagnitude: the norm\nstatic const float tabMagnitude[size*size] = {\n1.000000f, \n0.5f\n};";
         assert_eq!(parse_array(inc, "tabMagnitude").unwrap(), vec![1.0, 0.5]);
         let nested = "tabMinv[size*size] = {\n{1, 2, 3}, \n{4, 5, 6}\n};";
