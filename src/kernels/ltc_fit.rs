@@ -8,40 +8,49 @@
 //! ([`ltc_polygon_integral`](crate::kernels::ltc_polygon::ltc_polygon_integral)).
 //!
 //! **The error measure.** What a user sees is the relative error of that lit value, over
-//! lights of every size and place, most of which lie in the BRDF's tails, away from its peak
-//! (`examples/ltc_check.rs` measures exactly that). A polygon's lit value is an average of
-//! `norm·D` over it, so the pointwise ratio `D/y`, `y = f cos/norm`, sets the relative error
-//! of a small light there, and lights of all places weigh equally. The objective is thus the
-//! solid-angle average of a symmetric relative residual,
+//! lights of every size and place (`examples/ltc_check.rs` measures exactly that: 200
+//! lights × 10 views × 10 roughnesses against a quadrature ground truth). Most lights lie in
+//! the BRDF's tails, where a lit value's error is its overestimate or underestimate of a
+//! small number, and the bright ones hold the specular peak, where it is the lobe's shape.
+//! The objective is a weighted sum of squared *relative* residuals `(X − Y)/(Y + ε·Ω)` —
+//! an LTC's value `X` against the BRDF's `Y` over a region of solid angle `Ω`, `ε` a floor
+//! ([`LtcFitOptions::floor`]) below which a density is taken as 0 — of three kinds:
+//! * the nodes `l_k` of a fixed rule on the hemisphere ([`HemisphereRule`]), pointwise
+//!   (`X = D(l_k)`, `Y = y_k = f cos/norm`), weighted by their solid angle (`dω_k/2π`, the
+//!   tails) plus `λ` times the BRDF's energy there (`λ·y_k dω_k`, the peak's shape;
+//!   `λ` = [`LtcFitOptions::energy_weight`]);
+//! * probe lights ([`super::ltc_probe`]): a fixed tiling of the hemisphere into spherical
+//!   quads and two bands straddling the horizon, `X` the LTC's lit value in closed form,
+//!   weighted by solid angle. They see what no node can: a narrow ridge of LTC mass between
+//!   nodes (a sheared lobe at grazing views puts one along the horizon on the viewer's side:
+//!   lights there came out ×10⁴ too bright when only nodes were fitted) and the mass an LTC
+//!   with `d < 0` puts below the horizon, which a light crossing the horizon picks up.
 //!
-//! `E = Σ_k w_k s_k²`, `s_k = (D(l_k) − y_k)/(D(l_k) + y_k)`, `Σ w_k = 1`,
-//!
-//! over the nodes `l_k` of a fixed rule on the hemisphere ([`HemisphereRule`]; weights the
-//! solid angle over 2π). `s = tanh(½ ln(D/y))`: it is `½ ln(D/y)` to first order (factor-2
-//! errors either way weigh the same), bounded by 1 where a 4-parameter lobe cannot follow
-//! the BRDF at all (Beckmann's exp(−tan²θ/α²) tails: an unbounded log error there would
-//! let a handful of hopeless nodes steer the whole fit), and defined where `D` or `y` is 0.
+//! The residual is the lit value's relative error itself: unbounded above (a light lit
+//! 100× too bright is as wrong as the measure says) and at most 1 below (an unlit light).
 //! The paper's own measure, `∫|f cos − norm·D|³` (Heitz et al. 2016, §4, after its
 //! Monte Carlo estimate in `fit/fitLTC.cpp`), weighs the peak alone; it is reported
 //! ([`FitReport::l3`]) on the same rule, not minimized.
 //!
-//! **Which LTCs.** `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]`. With `d ≠ 0` the LTC's support
-//! is the tilted half-space `d·x + z > 0`, not the upper hemisphere: it is exactly 0 on a
-//! wedge above the horizon (lights there come out black: the published tables' exact zeros)
-//! and puts `1 − m` of its mass below the horizon (closed form,
-//! [`Ltc::upper_hemisphere_mass`]), which lights crossing the horizon pick up. The default
-//! fit holds `d = 0` ([`LtcFitOptions::free_d`]): the support is then the upper hemisphere,
-//! like the BRDF's. With `d` free, the mass below the horizon enters `E` as one more
-//! residual, `(m − 1)/(m + 1)` with weight [`LtcFitOptions::mass_weight`].
+//! **Which LTCs.** `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]` with `b ≥ 0 ≥ d` (the bounds'
+//! doc says why: every bilinear lookup between texels stays invertible). With `d < 0` the
+//! LTC's support is the tilted half-space `d·x + z > 0`: it is 0 on a wedge above the
+//! horizon on the viewer's side (lights there come out black: the published tables'
+//! exact zeros) and puts `1 − m` of its mass below the horizon on the mirror side (closed
+//! form, [`Ltc::upper_hemisphere_mass`]). What it buys is the lobe's shape down to the
+//! horizon on the mirror side, which `d = 0` (a sheared cosine, which must vanish at the
+//! horizon like `z`) cannot follow: with `d = 0` ([`LtcFitOptions::free_d`] false) a
+//! light holding the specular peak had twice the median error. The probes set the trade.
 //!
-//! **The optimizer.** Levenberg–Marquardt ([`ltc_lm`](super::ltc_lm), why there) in the
-//! parameters `θ = (ln a, b/a, ln c, d)`: logarithms keep `a, c > 0` and make the widths'
-//! steps relative (α spans 10⁻⁵…1, so `a, c` span 1…10⁵), `b/a` is the tangent of the
-//! lobe's tilt. The derivatives of `s_k` are analytic (below). A line of texels at one α
-//! is fitted from the normal view (where the lobe is rotationally symmetric: `b = d = 0`,
-//! `a = c`) toward grazing, each texel starting from the previous one's solution — a fixed
-//! path inside one task, so the result does not depend on threads or texel order; the first
-//! texel tries a fixed set of widths and keeps the best.
+//! **The optimizer.** Projected Levenberg–Marquardt ([`ltc_lm`](super::ltc_lm), why there)
+//! in `θ = (ln a, b/a, ln c, d)`: logarithms keep `a, c > 0` and make the widths' steps
+//! relative (α spans 10⁻⁵…1, so `a, c` span 1…10⁵), `b/a` is the cotangent of the lobe
+//! axis' elevation. The derivatives are analytic (the nodes' below, the probes' in
+//! [`super::ltc_probe`]). A line of texels at one α is fitted from the normal view toward
+//! grazing, each texel starting from the better (by the objective) of the previous texel's
+//! LTC and a mirror-lobe guess (`mirror_guess`); the line's first texel tries the guess
+//! and a fixed set of widths. A fixed path inside one task: the result does not depend on
+//! threads or texel order.
 //!
 //! **The channels.** `norm` is [`directional_albedo`] itself (brdfbake's albedo tables hold
 //! the same number, bit for bit), and the Fresnel channel the Schlick-weighted part

@@ -12,6 +12,9 @@
 //! method in four dimensions needs hundreds of objective evaluations and stops on a
 //! simplex-size criterion, not at a stationary point.
 
+// The normal equations index several same-size arrays at once.
+#![allow(clippy::needless_range_loop)]
+
 /// What the residual function gives back: `E = Σ r²`, `g = Jᵀr` and `A = JᵀJ`, accumulated
 /// over the residuals by the caller (so no residual vector is stored). `None` for a point
 /// outside the parameters' domain.
@@ -87,7 +90,8 @@ pub struct LmResult<const P: usize> {
 fn solve<const P: usize>(mut m: [[f64; P]; P], mut b: [f64; P]) -> Option<[f64; P]> {
     for col in 0..P {
         let piv = (col..P).max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))?;
-        if !(m[piv][col].abs() > 0.0) {
+        let pv = m[piv][col].abs();
+        if pv.is_nan() || pv == 0.0 {
             return None;
         }
         m.swap(col, piv);
@@ -157,7 +161,7 @@ pub fn minimize<const P: usize, F: FnMut(&[f64; P]) -> Option<Normal<P>>>(
             }
             pred -= 2.0 * delta[p] * cur.g[p] + delta[p] * ad;
         }
-        if !(pred > s.rel_decrease * cur.e) {
+        if pred.is_nan() || pred <= s.rel_decrease * cur.e {
             break;
         }
         let mut trial = theta;

@@ -121,7 +121,7 @@ fn quad_rule(
 }
 
 /// The probes of one texel whose BRDF value can be trusted: `Y` by the `ORDER²` rule on
-/// each quad ([`quad_rule`]), kept where the `CHECK_ORDER²` rule agrees to 10% (of
+/// each quad (`quad_rule`), kept where the `CHECK_ORDER²` rule agrees to 10% (of
 /// `Y + floor·Ω`) and the quad does not hold `peak` (the BRDF's largest value on the
 /// fit's rule): a lobe narrower than a probe is a spike that 16 nodes miss or hit by
 /// chance, and the fit's nodes, not the probes, are there to see it.
@@ -240,7 +240,7 @@ fn ddot(p: &DVec, q: &DVec) -> Dual {
 fn dedge(p: &DVec, q: &DVec) -> Dual {
     let u = dcross(p, q);
     let s2 = ddot(&u, &u);
-    if !(s2.v > 0.0) {
+    if s2.v.is_nan() || s2.v <= 0.0 {
         return Dual::c(0.0);
     }
     let s = s2.sqrt();
@@ -264,7 +264,7 @@ fn unclipped(ltc: &Ltc, verts: &[[f64; 3]], p: &[[f64; 3]]) -> (f64, [f64; 4]) {
         let (a, b) = (p[i], p[j]);
         let u = cross(a, b);
         let s2 = dot(u, u);
-        if !(s2 > 0.0) {
+        if s2.is_nan() || s2 <= 0.0 {
             continue;
         }
         let s = s2.sqrt();
@@ -306,7 +306,7 @@ fn unclipped(ltc: &Ltc, verts: &[[f64; 3]], p: &[[f64; 3]]) -> (f64, [f64; 4]) {
 /// first `p` gradient entries are used by a fit with `p` parameters.
 pub fn ltc_probe(ltc: &Ltc, verts: &[[f64; 3]]) -> (f64, [f64; 4]) {
     let n = verts.len();
-    if n >= 3 && n <= 8 {
+    if (3..=8).contains(&n) {
         // the common case, every vertex inside the support: the gradient in closed form
         let mut p = [[0.0; 3]; 8];
         let mut inside = true;

@@ -96,7 +96,7 @@ impl Ltc {
             ));
         }
         let e = m[2][2];
-        if !(e > 0.0) {
+        if e.is_nan() || e <= 0.0 {
             return Err(LtcError::Domain(format!(
                 "M^-1's (2,2) entry must be > 0, got {e}"
             )));
@@ -237,6 +237,7 @@ impl Ltc {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

@@ -149,10 +149,10 @@ impl HeitzTable {
         let at = |v: &Vec<[f64; 4]>, x: usize, y: usize| v[x + y * n];
         let bl = |v: &Vec<[f64; 4]>| {
             let mut o = [0.0; 4];
-            for k in 0..4 {
+            for (k, ok) in o.iter_mut().enumerate() {
                 let top = at(v, x0, y0)[k] * (1.0 - tx) + at(v, x0 + 1, y0)[k] * tx;
                 let bot = at(v, x0, y0 + 1)[k] * (1.0 - tx) + at(v, x0 + 1, y0 + 1)[k] * tx;
-                o[k] = top * (1.0 - ty) + bot * ty;
+                *ok = top * (1.0 - ty) + bot * ty;
             }
             o
         };
@@ -199,7 +199,7 @@ impl HeitzTable {
             let e = &m[9 * i..9 * i + 9];
             // glm: e[col*3 + row]; rows of M⁻¹: [[e0, e3, e6], [e1, e4, e7], [e2, e5, e8]]
             let mid = e[4];
-            if !(mid > 0.0) {
+            if mid.is_nan() || mid <= 0.0 {
                 return Err(LtcError::Domain(format!(
                     "ltc.inc: texel {i} has M^-1[1][1] = {mid}"
                 )));
