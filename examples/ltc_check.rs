@@ -36,6 +36,18 @@ fn ggx(alpha: f64) -> Result<Brdf, String> {
 }
 
 const TRUTH_TOL: f64 = 1e-7;
+
+/// CPU time of the whole process (every thread), seconds.
+fn process_cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
+    assert_eq!(rc, 0, "clock_gettime");
+    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
+}
 const CACHE: &str = "target/ltc-ground-truth-v1.txt";
 const CACHE_TEXELS: &str = "target/ltc-ground-truth-texels-v1.txt";
 
@@ -250,10 +262,14 @@ fn main() {
                 .num_threads(threads)
                 .build()
                 .expect("pool");
-            let t0 = Instant::now();
+            let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+            let (t0, c0) = (Instant::now(), process_cpu_seconds());
             let g = pool.install(|| fit(&opts));
-            let w = t0.elapsed().as_secs_f64();
-            println!("64^2 GGX fit on {threads} thread(s): {w:.3} s wall");
+            let (w, c) = (t0.elapsed().as_secs_f64(), process_cpu_seconds() - c0);
+            println!(
+                "64^2 GGX fit on {threads} thread(s): {w:.3} s wall, {c:.3} s CPU (load average before: {})",
+                load.split_whitespace().take(3).collect::<Vec<_>>().join(" ")
+            );
             walls.push(w);
             grids.push(g);
         }

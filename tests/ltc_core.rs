@@ -241,8 +241,9 @@ fn norm_is_brdfbakes_albedo() {
 /// every M⁻¹ finite and conditioned as its lobe requires — a lobe of width α about the
 /// mirror direction needs `cond(M⁻¹) ~ 1/α`, and at grazing views, where the reflected
 /// lobe's width across the plane of incidence shrinks to `2μα` and its axis leans to the
-/// horizon, up to `~1/(μα)`: asserted `cond·α ≤ 10` for cos θ ≥ 0.17 (θ ≤ 80°) and
-/// `cond·α·μ ≤ 10` at every row —, every bilinear lookup inside every cell invertible (9 × 9
+/// horizon, up to `~1/(μα)`: asserted `cond·α ≤ 20` for cos θ ≥ 0.17 (θ ≤ 80°; the 64²
+/// table reaches 11 there, `examples/ltc_check.rs`) and `cond·α·μ ≤ 10` at every row (it
+/// reaches 3.2) —, every bilinear lookup inside every cell invertible (9 × 9
 /// points a cell), and every texel read back through the documented lookup at its own
 /// coordinates, in f64 (to 1e-9: the lookup's √(1 − μ) rounds) and as f32 and f16 textures
 /// (to their rounding: 1e-6 and 2e-3 relative an entry, amplified by at most the
