@@ -135,6 +135,14 @@ impl HeitzTable {
             });
         }
         let n = self.n;
+        if n < 2 || self.ltc_1.len() != n * n || self.ltc_2.len() != n * n {
+            return Err(LtcError::Domain(format!(
+                "an LTC table of side {n} needs side >= 2 and {} texels a texture, has {} and {}",
+                n * n,
+                self.ltc_1.len(),
+                self.ltc_2.len()
+            )));
+        }
         let s = (1.0 - mu.clamp(0.0, 1.0)).sqrt();
         let uv = [r.clamp(0.0, 1.0), s];
         // continuous texel coordinates: u·n − 0.5 with u = x(n − 1)/n + 0.5/n is x(n − 1)
@@ -338,6 +346,22 @@ mod tests {
         assert_eq!(parse_array(nested, "tabMinv").unwrap().len(), 6);
         assert!(parse_array("x = [1, zz]", "x").is_err());
         assert!(parse_array("x = [1, 2", "x").is_err());
+    }
+
+    #[test]
+    fn malformed_tables_are_errors() {
+        let t = HeitzTable {
+            n: 1,
+            ltc_1: vec![[1.0, 0.0, 0.0, 1.0]],
+            ltc_2: vec![[1.0, 0.0, 0.0, 0.0]],
+        };
+        assert!(t.lookup(0.5, 0.5).is_err());
+        let t = HeitzTable {
+            n: 2,
+            ltc_1: vec![[1.0, 0.0, 0.0, 1.0]; 3],
+            ltc_2: vec![[1.0, 0.0, 0.0, 0.0]; 4],
+        };
+        assert!(t.ltc_at(0.5, 0.5).is_err());
     }
 
     #[test]
