@@ -196,6 +196,8 @@ fn norm_is_brdfbakes_albedo() {
             size: 6,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         },
         Axis {
             name: "roughness".into(),
@@ -203,6 +205,8 @@ fn norm_is_brdfbakes_albedo() {
             size: 5,
             range: [0.0, 1.0],
             convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
         },
     ];
     let spec = TableSpec {
