@@ -5,6 +5,13 @@
 
 pub mod classic_lobes;
 pub mod ggx_polar;
+pub mod ltc_check;
+pub mod ltc_fit;
+pub mod ltc_lm;
+pub mod ltc_polygon;
+pub mod ltc_probe;
+pub mod ltc_reference;
+pub mod ltc_rule;
 pub mod sheen_azimuth;
 pub mod sheen_polar;
 pub mod vgroove;

@@ -559,3 +559,4 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
     }
 }
+pub mod ltc_layout;
