@@ -177,7 +177,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Dfg => {
             let interpolated = crate::table::methods::split_sum_by_lines(spec);
             let nx = spec.axes[0].size as f64;
-            if interpolated && nx >= crate::table::dfg_lines::GRID_MIN_COLUMNS as f64 {
+            if interpolated && nx >= crate::table::methods::GRID_MIN_COLUMNS as f64 {
                 let (cloth, cloth_fixed) = if spec.cloth {
                     (2.0, 0.85e6)
                 } else {

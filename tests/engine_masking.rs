@@ -156,11 +156,27 @@ fn engine_presets_are_the_tables_checked_above() {
         let spec = &preset.tables[0].spec;
         let want = karis(masking, nx, ny);
         assert_eq!(
-            (&spec.kind, &spec.model, &spec.axes, &spec.dfg_layout, spec.cloth),
-            (&want.kind, &want.model, &want.axes, &want.dfg_layout, want.cloth),
+            (
+                &spec.kind,
+                &spec.model,
+                &spec.axes,
+                &spec.dfg_layout,
+                spec.cloth
+            ),
+            (
+                &want.kind,
+                &want.model,
+                &want.axes,
+                &want.dfg_layout,
+                want.cloth
+            ),
             "{name}"
         );
-        assert!(spec.tolerance <= want.tolerance, "{name}: {}", spec.tolerance);
+        assert!(
+            spec.tolerance <= want.tolerance,
+            "{name}: {}",
+            spec.tolerance
+        );
     }
 }
 

@@ -47,6 +47,7 @@
 //! without changing a bit.
 
 use super::dfg::{as_sample, cloth_sample, cloth_texel, Ctx, Dense};
+use super::methods::GRID_MIN_COLUMNS;
 use super::TableSpec;
 use crate::kernels::sheen_azimuth::View;
 use crate::lut::Axis;
@@ -158,12 +159,6 @@ const CLOTH_NARROW_BELOW_ALPHA: f64 = 1.0 / 16.0;
 /// lobes' albedo is ~0 but for a layer near grazing that columns resolve badly); their
 /// 24 rows at 128² cost 14.7 M on a grid against 1.9 M by rows.
 const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
-
-/// Grids only pay on tables of at least this many texel columns: a grid's x-line needs
-/// ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids against 10.0 M
-/// without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at 32²). Below it
-/// the pair goes by rows and the wide cloth lobes by columns alone.
-pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
 /// The variable in which a line along the roughness axis is interpolated.
 #[derive(Clone, Copy, Debug, PartialEq)]
