@@ -105,6 +105,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         engine: None,
         axis_order: None,
         shipped: None,
+        channels: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");
@@ -117,7 +118,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }),
         Box::new(RustSource {
             table_name: "dfg".into(),
-            half: true,
+            storage: Storage::F16,
         }),
     ];
     let mut files = Vec::new();

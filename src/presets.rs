@@ -59,6 +59,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),
     (
+        "gltf-lut-charlie",
+        include_str!("../presets/engines/gltf-lut-charlie.json"),
+    ),
+    (
+        "gltf-lut-ggx",
+        include_str!("../presets/engines/gltf-lut-ggx.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
     ),

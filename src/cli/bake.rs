@@ -48,11 +48,14 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
     let mut keys = Vec::new();
     for f in formats {
         if *f == Format::Png {
-            let ch = crate::table::channels(&t.spec);
+            let ch = t.stored_channels();
             for c in &ch {
                 keys.push(format!("preview-{}.png", c.name));
             }
             keys.push(format!("preview-{}-colour.png", ch[0].name));
+        } else if *f == Format::PngData {
+            // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
+            keys.push("png".to_string());
         } else {
             keys.push(f.name().to_string());
         }
@@ -194,6 +197,16 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = resolve(&a.presets)?;
+    // formats a table's storage cannot be written in (--format exr for a unorm table, …)
+    for p in &presets {
+        for t in &p.tables {
+            t.check_formats(formats.as_deref().unwrap_or(&t.formats))
+                .map_err(|e| {
+                    let flag = if formats.is_some() { "--format: " } else { "" };
+                    CliError::input(format!("{flag}preset {}: {e}", p.name))
+                })?;
+        }
+    }
     // (--check reads what a bake would write, one file at a time: bounded by the same)
     let estimate = crate::resources::estimate(&presets, formats.as_deref());
     crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)?;

@@ -149,7 +149,8 @@ fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result
         );
     }
     outln!(
-        "  exact: brdfbake at a 100x tighter tolerance (largest error estimate {})",
+        "  exact: brdfbake at tolerance {} (largest error estimate {})",
+        num(c.reference_tolerance),
         num(c.exact_error_estimate)
     );
     for ch in &c.channels {

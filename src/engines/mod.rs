@@ -21,7 +21,9 @@ pub struct Comparison {
     pub file: String,
     /// Stored axis sizes.
     pub dims: Vec<usize>,
-    /// The largest error estimate of the exact reference.
+    /// The tolerance the exact reference was baked at (100× the table's, or the table's own
+    /// where the tighter one cannot be reached), and its largest error estimate.
+    pub reference_tolerance: f64,
     pub exact_error_estimate: f64,
     /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
     /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
@@ -50,11 +52,17 @@ fn reference_tolerance(tol: f64) -> f64 {
     (tol / 100.0).clamp(crate::table::spec::MIN_TOLERANCE, 1e-9)
 }
 
-/// `v` as the table's storage holds it (f16 rounds to nearest even; f32 as is).
+/// `v` as the table's storage holds it (f16 rounds to nearest even; UNORM to its code, read
+/// back; f32 as is). A value a UNORM storage cannot hold stays as it is (the bake refuses it).
 fn stored_value(storage: Storage, v: f32) -> f32 {
     match storage {
         Storage::F16 => half::f16::from_f32(v).to_f32(),
         Storage::F32 => v,
+        Storage::Unorm8 | Storage::Unorm16 => {
+            let max = storage.unorm_max().expect("a UNORM storage");
+            crate::encode::unorm::code(v, max)
+                .map_or(v, |c| crate::encode::unorm::value(c, max) as f32)
+        }
     }
 }
 
@@ -88,20 +96,31 @@ pub fn compare_table(
     )?;
     let mut ref_spec = t.spec.clone();
     ref_spec.tolerance = reference_tolerance(t.spec.tolerance);
-    let exact = crate::table::bake_with(
-        &ref_spec,
-        &BakeOptions {
-            deadline,
-            // (where the reference's rule cannot reach its tighter tolerance it keeps what it
-            // reached, at most what the preset accepts)
-            accept_error_estimate: Some(t.accept_error_estimate.unwrap_or(t.spec.tolerance)),
-        },
-    )?;
+    let reference = |spec: &crate::table::TableSpec| {
+        crate::table::bake_with(
+            spec,
+            &BakeOptions {
+                deadline,
+                // (where the reference's rule cannot reach its tighter tolerance it keeps what
+                // it reached, at most what the preset accepts)
+                accept_error_estimate: Some(t.accept_error_estimate.unwrap_or(t.spec.tolerance)),
+            },
+        )
+    };
+    // a texel whose tighter rule does not converge (a near-singular lobe at a grazing view)
+    // leaves the reference at the preset's own tolerance, which the preset's bake met
+    let (exact, reference_tolerance) = match reference(&ref_spec) {
+        Ok(l) => (l, ref_spec.tolerance),
+        Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
+        Err(e) => return Err(e.into()),
+    };
     let ours = t.stored(ours);
     let stored = (t.spec.storage != Storage::F32).then(|| {
         let mut s = ours.clone();
         for v in s.data.iter_mut() {
-            *v = stored_value(t.spec.storage, *v);
+            // (the storage holds value × scale)
+            let scale = t.scale as f32;
+            *v = stored_value(t.spec.storage, *v * scale) / scale;
         }
         s
     });
@@ -145,6 +164,7 @@ pub fn compare_table(
         table: t.spec.name.clone(),
         file: file.to_string(),
         dims: stored_axes.iter().map(|a| a.size).collect(),
+        reference_tolerance,
         exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
         brdfbake_bound: 1e-6f64.max(rounding),
         channels,

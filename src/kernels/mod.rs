@@ -13,4 +13,5 @@ pub mod ltc_probe;
 pub mod ltc_reference;
 pub mod ltc_rule;
 pub mod sheen_azimuth;
+pub mod sheen_polar;
 pub mod vgroove;

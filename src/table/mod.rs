@@ -211,13 +211,14 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     // data is built once (dfg::column_fn); one block in texel order otherwise.
     // (GGX dfg tables go by lines instead, interpolated along rows and columns: dfg_lines, whose
     // dense result needs no per-texel allocation)
-    let dense = if spec.kind == TableKind::Dfg {
+    // (and large Charlie albedo tables: methods::albedo_by_lines)
+    let dense = if matches!(spec.kind, TableKind::Dfg | TableKind::Albedo) {
         dfg_lines::bake(spec, &out_of_time, limit)
     } else {
         None
     };
-    // (cloth albedo tables too: albedo::by_column)
-    let albedo_columns = albedo::by_column(spec);
+    // (the other cloth albedo tables too: albedo::by_column)
+    let albedo_columns = dense.is_none() && albedo::by_column(spec);
     let by_column = (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns;
     // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
     // i + j·nx holds the fibre's texels in slice order
