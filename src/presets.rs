@@ -67,8 +67,16 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/gltf-lut-ggx.json"),
     ),
     (
+        "heitz-ltc",
+        include_str!("../presets/engines/heitz-ltc.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
+    ),
+    (
+        "threejs-ltc",
+        include_str!("../presets/engines/threejs-ltc.json"),
     ),
 ];
 

@@ -99,9 +99,8 @@ impl TableSpec {
                             | (TableKind::AlbedoFresnel, _)
                             | (TableKind::ClassicAlbedo, _)
                             | (TableKind::ClassicAlbedoAniso, _)
-                            | (TableKind::Ltc, _)
-                            | (TableKind::Vgroove, "n_dot_h")
-                    );
+                            | (TableKind::Vgroove, "n_dot_h") // (an ltc table's views: table::ltc::validate, which says why and how to clamp)
+                    ) || kind == TableKind::Ltc;
                     if !zero_ok && first <= 0.0 {
                         return Err(format!(
                             "{f}: a texel at cosine 0 is not allowed for a {} table (the quantity is undefined at 0: \
