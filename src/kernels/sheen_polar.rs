@@ -376,7 +376,7 @@ const SHARED_TOL_FLOOR: f64 = 1e-12;
 /// What the wide lobes (α ≥ [`CUT_BELOW_ALPHA`]) of one view share: the outer panels, which
 /// then depend on the view alone (cut with G ≤ 1, the largest normalization of such a lobe
 /// and the tolerance floor), and for each of their Clenshaw–Curtis nodes the line's setup
-/// and the trapezoid nodes' data computed so far ([`NodeData`]: the lobe enters only
+/// and the trapezoid nodes' data computed so far (`NodeData`: the lobe enters only
 /// through its exponent). A texel gets the same bits from a filled cache as from an empty
 /// one: every entry is a pure function of the view and its node.
 #[derive(Default)]
@@ -390,8 +390,11 @@ struct SharedPanel {
     a: f64,
     b: f64,
     /// Per Clenshaw–Curtis node index (finest level): the line and its node data.
-    lines: Vec<Option<Box<(Line, Vec<NodeData>)>>>,
+    lines: Vec<Option<Box<LineNodes>>>,
 }
+
+/// A line and its node data.
+type LineNodes = (Line, Vec<NodeData>);
 
 impl PolarCache {
     /// The shared panels for view `mu_v` (built if they were for another view).

@@ -218,7 +218,7 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
     let rough = &spec.axes[1];
     for i in 0..rough.size {
         let a = rough.alpha(i).unwrap_or(f64::NAN);
-        if !(a >= MIN_ALPHA) {
+        if a.is_nan() || a < MIN_ALPHA {
             return Err(format!(
                 "axes.roughness: texel {i} is at alpha = {}, below the smallest an ltc table accepts ({MIN_ALPHA:e}: \
                  a mirror has no LTC); clamp the axis' values (Heitz's tables: alpha = max(r^2, 1e-5), \
@@ -253,6 +253,9 @@ pub fn fit_options(spec: &TableSpec) -> LtcFitOptions {
         ..Default::default()
     }
 }
+
+/// A roughness line's texels, or the texel where it failed and why.
+type LineResult = Result<Vec<LtcTexel>, (usize, String)>;
 
 /// The texels of one roughness line `j` (in μ order), fitted or only integrated.
 fn line(
@@ -312,7 +315,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync), limit: f6
             .iter()
             .any(|c| matches!(c, LtcChannel::Norm | LtcChannel::Fresnel));
     let opts = fit_options(spec);
-    let lines: Vec<Option<Result<Vec<LtcTexel>, (usize, String)>>> = if integrate {
+    let lines: Vec<Option<LineResult>> = if integrate {
         (0..ny)
             .into_par_iter()
             .with_min_len(1)
@@ -454,7 +457,7 @@ pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<(Vec<f64>, Vec<
             crate::numfmt::num(mu)
         ));
     }
-    if !(alpha >= MIN_ALPHA) {
+    if alpha.is_nan() || alpha < MIN_ALPHA {
         return Err(format!(
             "no exact value there: alpha = {} is below {MIN_ALPHA:e}, where an ltc table is defined",
             crate::numfmt::num(alpha)

@@ -182,9 +182,9 @@ pub fn split_sum_by_lines(spec: &TableSpec) -> bool {
 
 /// Whether `dfg_lines.rs` bakes this `albedo` table by lines: the Charlie sheen albedo
 /// (any of its maskings, F = 1, no diffuse lobe) on tables of at least
-/// [`GRID_MIN_COLUMNS`](super::dfg_lines::GRID_MIN_COLUMNS) columns whose view cosines
+/// `dfg_lines::GRID_MIN_COLUMNS` columns whose view cosines
 /// increase and are positive — the plan of the `dfg` table's cloth channel, its kernel the
-/// model's ([`cloth_texel`](super::dfg::cloth_texel)). Smaller tables go column by column,
+/// model's (`dfg::cloth_texel`). Smaller tables go column by column,
 /// texel by texel.
 pub fn albedo_by_lines(spec: &TableSpec) -> bool {
     let [x, _] = match spec.axes.as_slice() {
