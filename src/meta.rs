@@ -622,7 +622,9 @@ fn ltc_section(table: &PresetTable, fit: Option<&Lut>) -> Value {
             "bounds": "b >= 0 >= d, so that every bilinear lookup between texels is invertible",
         },
     });
-    if chans.iter().any(|c| c.is_matrix()) {
+    // (with the preset's `channels` the texture's components are those, not ltc.channels:
+    // the sidecar's `channels` say what each holds, and no rebuild is spelled out here)
+    if table.channels.is_none() && chans.iter().any(|c| c.is_matrix()) {
         let m = [
             crate::table::LtcChannel::M00,
             crate::table::LtcChannel::M20,
