@@ -38,6 +38,9 @@ pub enum Quantity {
     /// The anisotropy a ∈ [0, 1] of a `classic-albedo-aniso` table: aspect = √(1 − 0.9 a),
     /// α_x = α/aspect, α_y = α·aspect (see `table::classic`).
     Anisotropy,
+    /// A coordinate of a vector form factor (an `ltc-sphere` table): the z of its direction,
+    /// in [−1, 1], or its length, in [0, 1].
+    FormFactor,
 }
 
 /// How an axis spaces its texels: uniformly in a parameter `p = warp(x)` of its physical
@@ -246,7 +249,10 @@ impl Axis {
     pub fn alpha(&self, i: usize) -> Option<f64> {
         match self.quantity {
             Quantity::Roughness(q) => Some(q.to_alpha(self.coord(i))),
-            Quantity::Cosine | Quantity::Fresnel(_) | Quantity::Anisotropy => None,
+            Quantity::Cosine
+            | Quantity::Fresnel(_)
+            | Quantity::Anisotropy
+            | Quantity::FormFactor => None,
         }
     }
 

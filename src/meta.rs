@@ -62,6 +62,9 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(e) = table.engine {
         v["engine"] = json!(e.name());
     }
+    if let Some(c) = &spec.ltc_channels {
+        v["ltc_channels"] = json!(c.iter().map(|c| c.name()).collect::<Vec<_>>());
+    }
     if let Some(o) = &table.axis_order {
         v["axis_order"] = json!(o
             .iter()
@@ -142,6 +145,7 @@ fn quantity_name(a: &Axis) -> String {
         Quantity::Roughness(q) => format!("roughness:{}", q.name()),
         Quantity::Fresnel(q) => format!("fresnel:{}", q.name()),
         Quantity::Anisotropy => "anisotropy".into(),
+        Quantity::FormFactor => "form-factor".into(),
     }
 }
 
@@ -234,6 +238,8 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::reconstruction(spec)
         }
+        TableKind::Ltc => "area light (Heitz et al. 2016): in the frame with the normal +z and the view in the xz-plane, minv = mat3(vec3(m00, 0, m20), vec3(0, 1, 0), vec3(m02, 0, m22)) (columns; M^-1 up to scale, which the integral ignores); transform the light's vertices (relative to the shading point) by minv, clip the polygon to z > 0 and sum Lambert's edge terms: form factor = (1/2pi) sum_i acos(p_i.p_i+1) (p_i x p_i+1).z / |p_i x p_i+1| = int_P D; specular = light radiance * (F0 * norm + (F90 - F0) * fresnel) * form factor. The ltc section says where each channel is; the GLSL/HLSL/WGSL snippets implement it.",
+        TableKind::LtcSphere => "a sphere or disk light (Heitz & Hill 2017): with the vector form factor F of the light transformed by M^-1 (the sum of the edge vectors / 2pi, unclipped), len = |F|, z = F.z / len: clipped form factor = len * table(z, len); EEVEE's ltc_diffuse_sphere_integral samples it at uv = (z * 0.5 + 0.5, len) on the endpoints grid.",
     }
 }
 
@@ -294,6 +300,18 @@ fn model_json(spec: &TableSpec) -> Value {
 
 /// The full sidecar for a baked table. `files` maps format names to file names.
 pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, String)]) -> Value {
+    metadata_with_fit(preset, table, lut, files, None)
+}
+
+/// [`metadata`], with the per-texel fit error of an `ltc` table (in the stored layout, as
+/// `lut`; [`crate::table::bake_with_fit`]) in its `ltc.fit_error` section.
+pub fn metadata_with_fit(
+    preset: &str,
+    table: &PresetTable,
+    lut: &Lut,
+    files: &[(String, String)],
+    fit: Option<&Lut>,
+) -> Value {
     let spec = &table.spec;
     let dims: Vec<usize> = lut.axes.iter().map(|a| a.size).collect();
     let (texel_type, rounding) = match spec.storage {
@@ -409,6 +427,9 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "bit_depth": spec.storage.bytes() * 8,
             "layout": "as the EXR and KTX2 rows: the top image row is y = 0; the slices of a 3D table stacked downward; no colour-space chunk (linear data)",
         });
+    }
+    if spec.kind.is_ltc() {
+        v["ltc"] = ltc_section(table, fit);
     }
     // (only when set: tables without an engine keep their sidecars)
     if let Some(e) = table.engine {
@@ -552,4 +573,101 @@ pub fn model_summary(spec: &TableSpec) -> String {
         s.push_str(&format!(" + lambert {}", m.diffuse_weight));
     }
     s
+}
+
+/// The rows of a per-texel array (axis 1 index, axis 0 fastest within a row) as strings of
+/// numbers with 3 significant digits, separated by spaces: the sidecar's fit error (a
+/// guide to where the fit is good, compact: 64 strings, not 4096 lines).
+pub fn texel_rows(v: &[f32], nx: usize) -> Vec<String> {
+    v.chunks(nx.max(1))
+        .map(|r| {
+            r.iter()
+                .map(|x| format!("{:.2e}", *x as f64))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect()
+}
+
+/// The inverse of [`texel_rows`]: the values, row after row; `None` if a number is malformed.
+pub fn parse_texel_rows(rows: &[Value]) -> Option<Vec<f32>> {
+    let mut out = Vec::new();
+    for r in rows {
+        for t in r.as_str()?.split_whitespace() {
+            out.push(t.parse::<f32>().ok()?);
+        }
+    }
+    Some(out)
+}
+
+/// The `ltc` sidecar section: the channels and how a shader rebuilds the matrix, the fit's
+/// method and settings, and (with `fit`) the per-texel fit error.
+fn ltc_section(table: &PresetTable, fit: Option<&Lut>) -> Value {
+    let spec = &table.spec;
+    if spec.kind == TableKind::LtcSphere {
+        return json!({
+            "table": "horizon-clipped sphere (Heitz & Hill 2017; Snyder 1996's closed form): value(z, len) = (1/pi) int_cap max(0, w_z) dw / len for the cap of solid-angle radius asin(sqrt(len)) at the angle acos(z) from the normal; max(z, 0) at len = 0",
+            "lookup": "uv = ((z - lo_z) / (hi_z - lo_z), (len - lo_len) / (hi_len - lo_len)) remapped per axes[k].shader_texture_coordinate; z is the vector form factor's direction's z, len its length",
+        });
+    }
+    let chans = crate::table::ltc::ltc_channels(spec);
+    let index = |c: crate::table::LtcChannel| chans.iter().position(|&x| x == c);
+    let mut v = json!({
+        "channels": chans.iter().map(|c| c.name()).collect::<Vec<_>>(),
+        "normalization": "M^-1 = [[a, 0, b], [0, c, 0], [d, 0, 1]] (rows) divided by its middle entry c: m00 = a/c, m20 = d/c, m02 = b/c, m22 = 1/c (Heitz's ltc_1, three.js' ltc_1, EEVEE's ltc_mat_ggx, Filament's first layer)",
+        "frame": "the normal is +z, the view lies in the xz-plane at positive x: x = normalize(V - N (N.V)), y = cross(N, x)",
+        "fit": {
+            "method": "deterministic Levenberg-Marquardt on relative residuals of a fixed hemisphere rule's nodes and fixed probe lights, warm-started along the views of each roughness from the largest cos theta_v down (src/kernels/ltc_fit.rs; docs/presets.md, Area-light tables)",
+            "rule": crate::table::ltc::fit_options(spec).rule,
+            "bounds": "b >= 0 >= d, so that every bilinear lookup between texels is invertible",
+        },
+    });
+    // (with the preset's `channels` the texture's components are those, not ltc.channels:
+    // the sidecar's `channels` say what each holds, and no rebuild is spelled out here)
+    if table.channels.is_none() && chans.iter().any(|c| c.is_matrix()) {
+        let m = [
+            crate::table::LtcChannel::M00,
+            crate::table::LtcChannel::M20,
+            crate::table::LtcChannel::M02,
+            crate::table::LtcChannel::M22,
+        ]
+        .map(index);
+        if let [Some(a), Some(b), Some(c), Some(d)] = m {
+            let s = |k: usize| ["r", "g", "b", "a"].get(k).copied().unwrap_or("?");
+            v["inverse_matrix"] = json!(format!(
+                "mat3(vec3(t.{}, 0, t.{}), vec3(0, 1, 0), vec3(t.{}, 0, t.{})) with t the sampled texel (GLSL column-major)",
+                s(a), s(b), s(c), s(d)
+            ));
+        }
+    }
+    if let Some(f) = fit {
+        let nc = f.channels.len().max(1);
+        let mut err = serde_json::Map::new();
+        for (c, ch) in f.channels.iter().enumerate() {
+            let vals: Vec<f32> = f.data.iter().skip(c).step_by(nc).copied().collect();
+            let mut sorted: Vec<f64> = vals.iter().map(|&x| x as f64).collect();
+            sorted.sort_by(f64::total_cmp);
+            let q = |p: f64| {
+                sorted
+                    .get(((sorted.len() as f64 - 1.0) * p).round() as usize)
+                    .copied()
+                    .unwrap_or(f64::NAN)
+            };
+            err.insert(
+                ch.name.clone(),
+                json!({
+                    "meaning": ch.meaning,
+                    "median": q(0.5),
+                    "p99": q(0.99),
+                    "max": q(1.0),
+                    "rows": texel_rows(&vals, f.dim(0)),
+                }),
+            );
+        }
+        v["fit_error"] = Value::Object(err);
+        v["fit_error_layout"] = json!(
+            "rows: one string per texture row (axis 1 index), the row's texels along axis 0 separated by spaces, 3 significant digits"
+        );
+    }
+    v
 }

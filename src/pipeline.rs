@@ -128,9 +128,10 @@ pub fn bake_preset_until(
             deadline,
             accept_error_estimate: t.accept_error_estimate,
         };
-        let lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
+        let (lut, fit) = crate::table::bake_with_fit(&t.spec, &opts).map_err(|e| match e {
             crate::table::BakeError::TimeLimit { .. }
-            | crate::table::BakeError::ToleranceMissed { .. } => {
+            | crate::table::BakeError::ToleranceMissed { .. }
+            | crate::table::BakeError::FitFailed { .. } => {
                 PipelineError::Failed(format!("preset {}: {e}", preset.name))
             }
             _ => PipelineError::Input(format!("preset {}: {e}", preset.name)),
@@ -139,6 +140,11 @@ pub fn bake_preset_until(
         // the engine's channels (`channels`: values, before the scale) in its axis order
         // (`axis_order`), where the preset gives them
         let mut lut = t.stored(lut);
+        // (the fit error keeps its own channels; only the axis order is the table's)
+        let fit = fit.map(|f| match &t.axis_order {
+            Some(order) => f.permuted(order),
+            None => f,
+        });
         check_underflow(t, &lut).map_err(|m| {
             PipelineError::Input(format!(
                 "preset {}: table {}: {m}",
@@ -175,15 +181,26 @@ pub fn bake_preset_until(
             ..t.clone()
         };
         for f in &written.formats {
-            let encoded = encode(*f, t, &lut, &attrs)
-                .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
+            let encoded = encode(*f, t, &lut, &attrs).map_err(|e| {
+                PipelineError::Input(format!(
+                    "preset {}: {e}{}",
+                    preset.name,
+                    if t.spec.kind == crate::table::TableKind::Ltc && lut.channels.len() > 4 {
+                        " (an ltc table's channels go into textures of at most 4: list them in ltc.channels, \
+                         e.g. Heitz's layout as two tables, [m00, m20, m02, m22] and [norm, fresnel, zero, sphere]: \
+                         presets/engines/heitz-ltc.json)"
+                    } else {
+                        ""
+                    }
+                ))
+            })?;
             for (suffix, bytes) in encoded {
                 let file = format!("{}.{}", t.spec.name, suffix);
                 names.push((suffix, file.clone()));
                 encoded_files.push((file, bytes));
             }
         }
-        let json = meta::metadata(&preset.name, &written, &lut, &names);
+        let json = meta::metadata_with_fit(&preset.name, &written, &lut, &names, fit.as_ref());
         // the sidecar lists every file's digest and seals itself (crate::digest)
         let listed: Vec<(&str, &[u8])> = encoded_files
             .iter()

@@ -499,6 +499,16 @@ struct RawTable {
     #[serde(default)]
     shipped: Option<crate::engines::shipped::Shipped>,
     channels: Option<Vec<String>>,
+    #[serde(default)]
+    ltc: Option<RawLtc>,
+}
+
+/// The `ltc` object of an `ltc` table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLtc {
+    #[serde(default)]
+    channels: Option<Vec<crate::table::LtcChannel>>,
 }
 
 #[derive(Deserialize)]
@@ -529,6 +539,8 @@ struct RawAxes {
     roughness: Option<RawAxis>,
     fresnel: Option<RawAxis>,
     anisotropy: Option<RawAxis>,
+    form_factor_z: Option<RawAxis>,
+    form_factor_length: Option<RawAxis>,
 }
 
 impl RawAxes {
@@ -544,6 +556,8 @@ impl RawAxes {
             "roughness" => self.roughness.take(),
             "fresnel" => self.fresnel.take(),
             "anisotropy" => self.anisotropy.take(),
+            "form_factor_z" => self.form_factor_z.take(),
+            "form_factor_length" => self.form_factor_length.take(),
             _ => None,
         }
     }
@@ -561,6 +575,8 @@ impl RawAxes {
             ("roughness", &self.roughness),
             ("fresnel", &self.fresnel),
             ("anisotropy", &self.anisotropy),
+            ("form_factor_z", &self.form_factor_z),
+            ("form_factor_length", &self.form_factor_length),
         ];
         for (n, a) in all {
             if a.is_some() {
@@ -716,6 +732,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             t.cloth,
             t.storage,
             t.tolerance,
+            t.ltc,
         )
         .map_err(|(p, m)| field(at(&p), m))?;
         spec.validate()
@@ -976,7 +993,7 @@ fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
     if let Some(Value::Array(tables)) = v.get("tables") {
         for (i, t) in tables.iter().enumerate() {
             need(t, &format!("tables[{i}]"))?;
-            for key in ["model", "axes"] {
+            for key in ["model", "axes", "ltc"] {
                 if let Some(x) = t.get(key) {
                     need(x, &format!("tables[{i}].{key}"))?;
                 }
@@ -1052,6 +1069,7 @@ fn table_spec(
     cloth: Option<bool>,
     storage: Option<Storage>,
     tolerance: Option<f64>,
+    ltc: Option<RawLtc>,
 ) -> Result<TableSpec, (String, String)> {
     let masking_list = Masking::ALL
         .iter()
@@ -1063,6 +1081,14 @@ fn table_spec(
         None if kind == TableKind::Vgroove => RawModel {
             ndf: None,
             masking: Some(Masking::VGroove),
+            fresnel: None,
+            diffuse: None,
+            classic: None,
+        },
+        // (a closed form of geometry: no BRDF)
+        None if kind == TableKind::LtcSphere => RawModel {
+            ndf: None,
+            masking: Some(Masking::None),
             fresnel: None,
             diffuse: None,
             classic: None,
@@ -1080,6 +1106,9 @@ fn table_spec(
         (None, TableKind::G1) => Masking::SmithSeparable,
         (None, TableKind::Vgroove) => Masking::VGroove,
         (None, k) if k.is_classic() => Masking::None,
+        (None, TableKind::LtcSphere) => Masking::None,
+        // (a Lambertian lobe has no masking)
+        (None, TableKind::Ltc) if model.ndf.is_none() => Masking::None,
         (None, _) => {
             return Err((
                 "model.masking".into(),
@@ -1118,6 +1147,13 @@ fn table_spec(
         let is_rough = an == "roughness";
         let quantity = match (an, raw.quantity) {
             ("anisotropy", None) => Quantity::Anisotropy,
+            ("form_factor_z" | "form_factor_length", None) => Quantity::FormFactor,
+            ("form_factor_z" | "form_factor_length", Some(_)) => {
+                return Err((
+                    format!("axes.{an}.quantity"),
+                    "a form-factor axis takes no quantity: its coordinate is the z of the vector form factor's direction ([-1, 1]) or its length ([0, 1])".into(),
+                ))
+            }
             ("anisotropy", Some(_)) => {
                 return Err((
                     format!("axes.{an}.quantity"),
@@ -1211,6 +1247,19 @@ fn table_spec(
             ),
         ));
     }
+    let ltc_channels = match (kind, ltc) {
+        (TableKind::Ltc, l) => Some(
+            l.and_then(|l| l.channels)
+                .unwrap_or_else(|| crate::table::LtcChannel::DEFAULT.to_vec()),
+        ),
+        (_, None) => None,
+        (_, Some(_)) => {
+            return Err((
+                "ltc".into(),
+                format!("applies to ltc tables only, not {}", kind.name()),
+            ))
+        }
+    };
     Ok(TableSpec {
         name,
         kind,
@@ -1218,6 +1267,7 @@ fn table_spec(
         axes: out_axes,
         dfg_layout: layout,
         cloth: cloth.unwrap_or(false),
+        ltc_channels,
         storage: storage.unwrap_or(Storage::F32),
         tolerance: tolerance.unwrap_or(DEFAULT_TOLERANCE),
     })

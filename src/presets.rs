@@ -79,12 +79,20 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/learnopengl-brdf-lut.json"),
     ),
     (
+        "heitz-ltc",
+        include_str!("../presets/engines/heitz-ltc.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
     ),
     (
         "unreal-preintegrated-gf",
         include_str!("../presets/engines/unreal-preintegrated-gf.json"),
+    ),
+    (
+        "threejs-ltc",
+        include_str!("../presets/engines/threejs-ltc.json"),
     ),
 ];
 

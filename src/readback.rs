@@ -289,6 +289,11 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     t.insert("kind".into(), kind.clone());
     t.insert("model".into(), Value::Object(model));
     t.insert("axes".into(), Value::Object(axes.clone()));
+    if let Some(c) = get(&["ltc", "channels"]) {
+        if kind == json!("ltc") {
+            t.insert("ltc".into(), json!({ "channels": c }));
+        }
+    }
     if kind == json!("dfg") {
         if let Some(l) = get(&["model", "split_sum", "layout"]) {
             t.insert("layout".into(), l.clone());
@@ -378,6 +383,8 @@ fn parse_axis_attribute(s: &str) -> Option<Axis> {
         Quantity::Cosine
     } else if w[1] == "anisotropy" {
         Quantity::Anisotropy
+    } else if w[1] == "form-factor" {
+        Quantity::FormFactor
     } else if let Some(q) = w[1].strip_prefix("fresnel:") {
         Quantity::Fresnel(crate::model::FresnelQuantity::from_name(q)?)
     } else {
@@ -1014,6 +1021,9 @@ pub fn exact_at(
     x: &[f64],
     tol: f64,
 ) -> Result<(Vec<f64>, Vec<f64>), String> {
+    if table.kind.is_ltc() {
+        return crate::table::ltc::exact_at(table, x, tol);
+    }
     let mut spec = table.clone();
     spec.tolerance = tol;
     for (a, &v) in spec.axes.iter_mut().zip(x) {
@@ -1057,6 +1067,7 @@ pub fn exact_at(
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::texel_fn(&spec)
         }
+        TableKind::Ltc | TableKind::LtcSphere => unreachable!("handled above"),
     };
     let r = crate::quadrature::budget::with_budget(
         crate::quadrature::budget::INTEGRAL_EVAL_BUDGET,

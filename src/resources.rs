@@ -230,6 +230,32 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // functions (~0.2-0.6 us), more than the 100 ns assumed.
         K::ClassicAlbedo => (classic_evals_per_texel(spec.model.classic.as_ref()), 0.0),
         K::ClassicAlbedoAniso => (300_000.0, 0.0),
+        // the LTC fit: 1.4–1.7 s of CPU for the 64² GGX table (0.37 ms a texel, the fit's
+        // normal equations over 216 nodes and ~50 probe lights a pass; examples/ltc_check.rs,
+        // 2026-12-02), i.e. ~3,700 evaluations' worth at 100 ns, plus the norm and Fresnel
+        // integrals (two albedos); without matrix channels the integrals alone; the sphere
+        // table is a closed form
+        K::Ltc => {
+            let chans = crate::table::ltc::ltc_channels(spec);
+            let fit = if chans.iter().any(|c| c.is_matrix()) {
+                4_000.0
+            } else {
+                0.0
+            };
+            let integrals = if chans.iter().any(|c| {
+                c.is_matrix()
+                    || matches!(
+                        c,
+                        crate::table::LtcChannel::Norm | crate::table::LtcChannel::Fresnel
+                    )
+            }) {
+                2.0 * albedo
+            } else {
+                0.0
+            };
+            (fit + integrals, 0.0)
+        }
+        K::LtcSphere => (0.0, 0.0),
     }
 }
 

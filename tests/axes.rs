@@ -47,6 +47,7 @@ fn g1_spec(cos: Axis) -> TableSpec {
         ],
         dfg_layout: None,
         cloth: false,
+        ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-9,
     }

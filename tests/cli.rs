@@ -889,7 +889,7 @@ const FIXTURES: &[(&str, i32, &[&str])] = &[
         &[
             "tables[0]",
             "model.masking \"v-groove\"",
-            "smith-separable, smith-height-correlated or ashikhmin",
+            "accepts smith-separable, smith-height-correlated, ashikhmin",
             "vgroove",
         ],
     ),

@@ -54,6 +54,7 @@ fn karis(masking: Masking, nx: usize, ny: usize) -> TableSpec {
         ],
         dfg_layout: Some(DfgLayout::Karis),
         cloth: false,
+        ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-7,
     }
@@ -225,6 +226,7 @@ fn albedo_of_schlick_ggx_matches_the_reference() {
                 ],
                 dfg_layout: None,
                 cloth: false,
+                ltc_channels: None,
                 storage: Storage::F32,
                 tolerance: 1e-7,
             };

@@ -67,7 +67,7 @@ pub(crate) fn bake_error(preset: &str, e: crate::table::BakeError) -> CliError {
     use crate::table::BakeError as B;
     let msg = format!("preset {preset}: {e}");
     match e {
-        B::TimeLimit { .. } | B::ToleranceMissed { .. } => CliError::env(msg),
+        B::TimeLimit { .. } | B::ToleranceMissed { .. } | B::FitFailed { .. } => CliError::env(msg),
         _ => CliError::input(msg),
     }
 }

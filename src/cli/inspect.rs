@@ -78,6 +78,9 @@ fn axis_line(a: &crate::lut::Axis) -> String {
         crate::lut::Quantity::Anisotropy => {
             format!("anisotropy ({})", crate::table::classic::ANISOTROPY_MAPPING)
         }
+        crate::lut::Quantity::FormFactor => {
+            "form factor (the z of its direction, or its length)".to_string()
+        }
     };
     format!(
         "{} — {q}, {} texels over [{}, {}], {}{}",

@@ -379,6 +379,9 @@ pub(crate) fn quantity_name(a: &Axis) -> String {
         Quantity::Anisotropy => {
             format!("anisotropy ({})", crate::table::classic::ANISOTROPY_MAPPING)
         }
+        Quantity::FormFactor => {
+            "form-factor (of a vector form factor: the z of its direction, or its length)".into()
+        }
     }
 }
 

@@ -95,7 +95,21 @@ pub fn compare_table(
         },
     )?;
     let mut ref_spec = t.spec.clone();
-    ref_spec.tolerance = reference_tolerance(t.spec.tolerance);
+    // An `ltc` table's matrix channels are the fit's result: they have no exact value beyond
+    // the fit itself, and a refit on integrals of another tolerance may settle in another
+    // minimum where the fit is ill-conditioned (grazing views at small alpha) with the same
+    // lit error. Its reference is the fit at the preset's own tolerance, so the matrix
+    // channels compare the shipped fit with brdfbake's; the lit error, which is what matters,
+    // is tests/ltc_table.rs'.
+    let fits_matrix = t.spec.kind == crate::table::TableKind::Ltc
+        && crate::table::ltc::ltc_channels(&t.spec)
+            .iter()
+            .any(|c| c.is_matrix());
+    ref_spec.tolerance = if fits_matrix {
+        t.spec.tolerance
+    } else {
+        reference_tolerance(t.spec.tolerance)
+    };
     let reference = |spec: &crate::table::TableSpec| {
         crate::table::bake_with(
             spec,

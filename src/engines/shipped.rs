@@ -169,7 +169,7 @@ impl Shipped {
                 })?;
                 let values = self.values.unwrap_or(ShippedValues::Float);
                 (
-                    text_values(text, self.symbol.as_deref(), values, name)?,
+                    text_array(text, self.symbol.as_deref(), values, name)?,
                     values.step(),
                 )
             }
@@ -281,8 +281,13 @@ fn strip_comments(text: &str) -> String {
     out
 }
 
-/// The numbers of a text file (within `symbol`'s brackets when given).
-fn text_values(
+/// The numbers of a text file, or of the array `symbol` in it (the values between the first
+/// bracket after the symbol's declaration and its match, nested brackets flattened), as
+/// `values` encodes them. Comments (`//`, `/* */`, `#` lines) are skipped; a sign written
+/// apart from its number (`- 4.5e-07`, as three.js' `RectAreaLightTexturesLib.js` spaces
+/// them) belongs to it. `name` names the file in messages. The one reader of numbers in text:
+/// `compare`'s shipped tables and the published LTC tables (`table::ltc_layout`).
+pub fn text_array(
     text: &str,
     symbol: Option<&str>,
     values: ShippedValues,
@@ -311,12 +316,23 @@ fn text_values(
             &inner[..close]
         }
     };
-    let mut out = Vec::new();
-    for (k, tok) in body
+    let mut tokens: Vec<String> = Vec::new();
+    let mut sign: Option<&str> = None;
+    for t in body
         .split(|c: char| c == ',' || c.is_whitespace() || "{}[]();=".contains(c))
         .filter(|t| !t.is_empty())
-        .enumerate()
     {
+        match (sign.take(), t) {
+            (None, "-" | "+") => sign = Some(t),
+            (Some(s), _) => tokens.push(format!("{s}{t}")),
+            (None, _) => tokens.push(t.to_string()),
+        }
+    }
+    if let Some(s) = sign {
+        tokens.push(s.to_string());
+    }
+    let mut out = Vec::new();
+    for (k, tok) in tokens.iter().map(String::as_str).enumerate() {
         let v = parse_number(tok, values).ok_or_else(|| {
             format!(
                 "{name}: value {} ({tok:?}) is not {} (shipped.values)",
@@ -537,6 +553,22 @@ mod tests {
             .read(text.as_bytes(), [2, 2, 1], "t")
             .unwrap_err();
         assert!(e.contains("no array named \"c\""), "{e}");
+    }
+
+    /// A sign spaced apart from its number (three.js' LTC arrays) belongs to it; a lone
+    /// trailing sign is an error, not a silent zero.
+    #[test]
+    fn spaced_signs_join_their_numbers() {
+        let t = text_array(
+            "a = [1, - 4.5e-07, + 2, -3]",
+            Some("a"),
+            ShippedValues::Float,
+            "t",
+        )
+        .unwrap();
+        assert_eq!(t, [1.0, -4.5e-7, 2.0, -3.0]);
+        let e = text_array("a = [1, -]", Some("a"), ShippedValues::Float, "t").unwrap_err();
+        assert!(e.contains("\"-\""), "{e}");
     }
 
     #[test]

@@ -124,10 +124,44 @@ impl LtcFitOptions {
 pub struct FitReport {
     /// The minimized objective (module doc); `√objective` is an rms relative error.
     pub objective: f64,
-    /// The paper's error `∫ |y − D|³ dω` with `y = f cos/norm`, on the same rule.
+    /// The paper's error `∫ |f cos − norm·D|³ dω`, on the same rule (per steradian³ of
+    /// `f cos`: it grows as `α⁻⁴` for narrow lobes).
     pub l3: f64,
+    /// [`FitReport::l3`] over `∫ (f cos)³ dω` on the same rule: dimensionless, comparable
+    /// across texels.
+    pub l3_relative: f64,
     /// Residual passes the optimizer spent (all starts).
     pub passes: usize,
+    /// The relative error of the lit value of the probe lights ([`super::ltc_probe`]: the
+    /// fixed tiling of the hemisphere into spherical quads and the two bands across the
+    /// horizon, less the quad holding the BRDF's peak and those whose BRDF value the probe
+    /// rules do not resolve), `r_p = (X_p − Y_p)/(Y_p + ε·Ω_p)` with `X` the LTC's closed
+    /// form and `Y` the BRDF's: the root mean square weighted by solid angle.
+    pub lit_rms: f64,
+    /// The largest `|r_p|` over the probes that hold at least 1% of the brightest probe's
+    /// lit value (the lights that matter; the dim ones are in [`FitReport::lit_rms`]).
+    pub lit_max: f64,
+}
+
+/// `(lit_rms, lit_max)` of [`FitReport`] for `ltc` on a target.
+fn lit_errors(tg: &Target, ltc: &Ltc) -> (f64, f64) {
+    let brightest = tg.probes.iter().map(|p| p.y).fold(0.0, f64::max);
+    let (mut sum, mut omega, mut max) = (0.0, 0.0, 0.0f64);
+    for p in &tg.probes {
+        let (x, _) = ltc_probe(ltc, &p.verts);
+        let r = (x - p.y) / (p.y + tg.floor * p.omega);
+        sum += p.omega * r * r;
+        omega += p.omega;
+        if p.y >= 0.01 * brightest {
+            max = max.max(r.abs());
+        }
+    }
+    let rms = if omega > 0.0 {
+        (sum / omega).sqrt()
+    } else {
+        0.0
+    };
+    (rms, max)
 }
 
 /// One fitted texel.
@@ -141,6 +175,9 @@ pub struct LtcTexel {
     /// The quadratures' error estimates of `norm` and `fresnel`.
     pub norm_error: f64,
     pub fresnel_error: f64,
+    /// Integrand evaluations of the BRDF: the norm and Fresnel quadratures, the fit's rule
+    /// and its probe lights' rules (the LTC's own evaluations are not counted).
+    pub evaluations: u64,
     pub fit: FitReport,
 }
 
@@ -309,13 +346,16 @@ fn fit_target(tg: &Target, start: &Ltc, opts: &LtcFitOptions) -> Option<(Ltc, f6
 }
 
 /// The L³ error of `ltc` on a target (per steradian of `f cos`, not of the normalized lobe).
-fn l3_error(tg: &Target, rule: &HemisphereRule, ltc: &Ltc, norm: f64) -> f64 {
-    let mut l3 = 0.0;
+/// Returns `(∫|f cos − norm·D|³, ∫ (f cos)³)` on the rule.
+fn l3_error(tg: &Target, rule: &HemisphereRule, ltc: &Ltc, norm: f64) -> (f64, f64) {
+    let (mut l3, mut y3) = (0.0, 0.0);
     for ((dir, &dw), &y) in tg.dirs.iter().zip(&rule.weights).zip(&tg.y) {
         let d = (ltc.eval(*dir) - y).abs() * norm;
         l3 += dw * d * d * d;
+        let yn = y * norm;
+        y3 += dw * yn * yn * yn;
     }
-    l3
+    (l3, y3)
 }
 
 /// The LTC whose lobe sits on the mirror direction of a microfacet lobe of angular width
@@ -416,12 +456,17 @@ pub fn fit_ltc(
             "the fit found no valid LTC (the objective is not finite at any start)".into(),
         ));
     };
+    let (lit_rms, lit_max) = lit_errors(&tg, &ltc);
+    let (l3, y3) = l3_error(&tg, &rule, &ltc, norm);
     Ok((
         ltc,
         FitReport {
             objective,
-            l3: l3_error(&tg, &rule, &ltc, norm),
+            l3,
+            l3_relative: if y3 > 0.0 { l3 / y3 } else { 0.0 },
             passes,
+            lit_rms,
+            lit_max,
         },
     ))
 }
@@ -463,26 +508,43 @@ fn brdf_warp(brdf: &Brdf) -> LobeWarp {
         .map_or(LobeWarp::TanOverScale(1.0), |s| s.warp())
 }
 
-/// `(norm, its error, fresnel, its error)` of a BRDF at view cosine `mu`: the norm by
+/// The norm and Fresnel channels of one texel, with their quadratures' error estimates and
+/// the integrand evaluations they cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormFresnel {
+    pub norm: f64,
+    pub norm_error: f64,
+    pub fresnel: f64,
+    pub fresnel_error: f64,
+    pub evaluations: u64,
+}
+
+/// The norm and Fresnel channels of a BRDF at view cosine `mu`: the norm by
 /// [`directional_albedo`], the Fresnel channel by the split-sum kernels for a specular lobe
 /// with F = 1 and no diffuse lobe ([`split_sum_kernels`]), else by the hemisphere rule
 /// ([`integrate_over_l_smooth`]) of `(1 − v·h)⁵ f cos`. Each inside its own evaluation budget.
-pub fn norm_and_fresnel(brdf: &Brdf, mu: f64, tol: f64) -> (f64, f64, f64, f64) {
-    let (n, ne, _) = with_budget(INTEGRAL_EVAL_BUDGET, || directional_albedo(brdf, mu, tol));
-    let (f, fe) = with_budget(INTEGRAL_EVAL_BUDGET, || match &brdf.specular {
+pub fn norm_and_fresnel(brdf: &Brdf, mu: f64, tol: f64) -> NormFresnel {
+    let (n, ne, n_evals) = with_budget(INTEGRAL_EVAL_BUDGET, || directional_albedo(brdf, mu, tol));
+    let (f, fe, f_evals) = with_budget(INTEGRAL_EVAL_BUDGET, || match &brdf.specular {
         Some(s) if brdf.diffuse_weight == 0.0 && s.fresnel == Fresnel::None => {
-            let (v, e, _) = split_sum_kernels(s, mu, tol);
-            (v[1], e[1])
+            let (v, e, evals) = split_sum_kernels(s, mu, tol);
+            (v[1], e[1], evals)
         }
         _ => {
             let g = brdf_fcos(brdf);
             let e = integrate_over_l_smooth(mu, brdf.specular.as_ref().map(|s| &s.ndf), tol, |n| {
                 [g(n) * schlick_weight(n.v_dot_h)]
             });
-            (e.value[0], e.error[0])
+            (e.value[0], e.error[0], e.evals)
         }
     });
-    (n[0], ne[0], f, fe)
+    NormFresnel {
+        norm: n[0],
+        norm_error: ne[0],
+        fresnel: f,
+        fresnel_error: fe,
+        evaluations: n_evals + f_evals,
+    }
 }
 
 /// Fits one texel of a brdfbake BRDF at view cosine `mu` ∈ (0, 1]: the LTC (from `start`,
@@ -499,15 +561,37 @@ pub fn fit_texel(
             "the view cosine must be in (0, 1], got {mu}"
         )));
     }
-    let (norm, norm_error, fresnel, fresnel_error) = norm_and_fresnel(brdf, mu, opts.tolerance);
+    let nf = norm_and_fresnel(brdf, mu, opts.tolerance);
+    if nf.norm == 0.0 {
+        // nothing is reflected (a sheen lobe of tiny α seen from above: its albedo underflows):
+        // every lit value is 0 whatever the matrix; the texel keeps the clamped cosine, which
+        // interpolates with its neighbours as well as any
+        return Ok(LtcTexel {
+            ltc: Ltc::IDENTITY,
+            norm: 0.0,
+            fresnel: nf.fresnel,
+            norm_error: nf.norm_error,
+            fresnel_error: nf.fresnel_error,
+            evaluations: nf.evaluations,
+            fit: FitReport {
+                objective: 0.0,
+                l3: 0.0,
+                l3_relative: 0.0,
+                passes: 0,
+                lit_rms: 0.0,
+                lit_max: 0.0,
+            },
+        });
+    }
     let fcos = brdf_fcos(brdf);
-    let (ltc, fit) = fit_ltc(&fcos, mu, brdf_warp(brdf), norm, start, shape, opts)?;
+    let (ltc, fit) = fit_ltc(&fcos, mu, brdf_warp(brdf), nf.norm, start, shape, opts)?;
     Ok(LtcTexel {
         ltc,
-        norm,
-        fresnel,
-        norm_error,
-        fresnel_error,
+        norm: nf.norm,
+        fresnel: nf.fresnel,
+        norm_error: nf.norm_error,
+        fresnel_error: nf.fresnel_error,
+        evaluations: nf.evaluations + (shape.len() + super::ltc_probe::brdf_evaluations()) as u64,
         fit,
     })
 }

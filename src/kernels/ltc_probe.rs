@@ -146,6 +146,11 @@ pub fn probes(
         .collect()
 }
 
+/// The BRDF evaluations [`probes`] spends on one texel: both rules on every probe quad.
+pub fn brdf_evaluations() -> usize {
+    probe_quads().len() * (ORDER * ORDER + CHECK_ORDER * CHECK_ORDER)
+}
+
 /// The half-vector node of unit directions `v`, `l` (normal +z); `None` at or below the
 /// horizon.
 pub fn node_of(v: [f64; 3], l: [f64; 3]) -> Option<Node> {

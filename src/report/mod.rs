@@ -210,7 +210,9 @@ fn karis_section(t: &ReportTable, out: &mut String) {
     let ra = lut.axes.last().expect("axis");
     let perceptual = |coord: f64| match ra.quantity {
         Quantity::Roughness(q) => q.to_alpha(coord).sqrt(),
-        Quantity::Cosine | Quantity::Fresnel(_) | Quantity::Anisotropy => coord,
+        Quantity::Cosine | Quantity::Fresnel(_) | Quantity::Anisotropy | Quantity::FormFactor => {
+            coord
+        }
     };
     let ab = |mu: f64, r: f64| {
         let v = lut.lookup(&[mu, r]);

@@ -924,6 +924,7 @@ mod tests {
                 DfgLayout::Karis
             }),
             cloth,
+            ltc_channels: None,
             storage: Storage::F32,
             tolerance: tol,
         }

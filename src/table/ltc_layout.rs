@@ -26,6 +26,7 @@
 //! nine entries per texel in glm's column-major order, `%.6f`) and `tabMagnitude` (the norm),
 //! texels in the same `a + t·n` order.
 
+use crate::engines::shipped::{text_array, ShippedValues};
 use crate::kernels::ltc_fit::LtcGrid;
 use crate::kernels::ltc_polygon::clipped_sphere_table;
 use crate::model::ltc::{Ltc, LtcError};
@@ -255,78 +256,13 @@ pub fn sphere_texel(a: usize, t: usize, n: usize) -> Result<f64, LtcError> {
     clipped_sphere_table(z.clamp(-1.0, 1.0), len.clamp(0.0, 1.0))
 }
 
-/// The numbers of the array literal that follows the first `name` in `text` (`[ … ]` or
-/// `{ … }`, nested braces flattened), accepting the forms the published files use:
-/// `-1.2e-07`, `- 1.2e-07` (three.js' spacing), `0.5f` (C suffix).
+/// The numbers of the array `name` in `text`, read by the one reader of numbers in text
+/// ([`text_array`]: `compare`'s shipped tables use it too), which accepts the forms the
+/// published files use: `-1.2e-07`, `- 1.2e-07` (three.js' spacing), `0.5f` (C suffix),
+/// nested braces (`ltc.inc`'s matrices).
 pub fn parse_array(text: &str, name: &str) -> Result<Vec<f64>, LtcError> {
-    // the first `name` that is assigned: `name =` or `name[…] =` (so that a comment naming
-    // the array does not count)
-    let mut from = 0;
-    let after_eq = loop {
-        let start = text[from..]
-            .find(name)
-            .map(|i| from + i)
-            .ok_or_else(|| LtcError::Domain(format!("no array {name:?} in the text")))?;
-        from = start + name.len();
-        let mut rest = text[from..].trim_start();
-        if let Some(r) = rest.strip_prefix('[') {
-            match r.find(']') {
-                Some(k) if !r[..k].contains(',') => rest = r[k + 1..].trim_start(),
-                _ => continue,
-            }
-        }
-        if let Some(r) = rest.strip_prefix('=') {
-            break r;
-        }
-    };
-    let open = after_eq
-        .find(['[', '{'])
-        .ok_or_else(|| LtcError::Domain(format!("array {name:?} has no opening bracket")))?;
-    let body = &after_eq[open..];
-    let mut depth = 0usize;
-    let mut end = None;
-    for (i, ch) in body.char_indices() {
-        match ch {
-            '[' | '{' => depth += 1,
-            ']' | '}' => {
-                depth = depth.saturating_sub(1);
-                if depth == 0 {
-                    end = Some(i);
-                    break;
-                }
-            }
-            _ => {}
-        }
-    }
-    let end = end.ok_or_else(|| LtcError::Domain(format!("array {name:?} is not closed")))?;
-    let inner: String = body[1..end]
-        .chars()
-        .map(|c| {
-            if matches!(c, '[' | ']' | '{' | '}') {
-                ','
-            } else {
-                c
-            }
-        })
-        .collect();
-    let mut out = Vec::new();
-    for tok in inner.split(',') {
-        let t: String = tok.chars().filter(|c| !c.is_whitespace()).collect();
-        let t = t.trim_end_matches('f');
-        if t.is_empty() {
-            continue;
-        }
-        let v: f64 = t
-            .parse()
-            .map_err(|_| LtcError::Domain(format!("array {name:?}: {t:?} is not a number")))?;
-        if !v.is_finite() {
-            return Err(LtcError::NotFinite {
-                what: "a table entry",
-            });
-        }
-        out.push(v);
-    }
-    Ok(out)
+    text_array(text, Some(name), ShippedValues::Float, "the LTC table text")
+        .map_err(LtcError::Domain)
 }
 
 #[cfg(test)]

@@ -13,13 +13,14 @@ pub mod dfg_lines;
 pub mod dielectric;
 pub mod energy;
 pub mod local;
+pub mod ltc;
 pub mod methods;
 mod smooth;
 pub mod spec;
 pub mod texel;
 mod validate;
 
-pub use spec::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+pub use spec::{DfgLayout, LtcChannel, ModelSpec, Storage, TableKind, TableSpec};
 pub use texel::MISSES_SHOWN;
 pub(crate) use texel::{FibreFn, Misses, TexelResult};
 
@@ -55,6 +56,14 @@ pub enum BakeError {
         texels: usize,
         /// The largest of them, largest first (at most [`MISSES_SHOWN`]).
         worst: Vec<Miss>,
+    },
+    /// The LTC fit found no LTC at a texel (an `ltc` table).
+    #[error("table {name:?}: the LTC fit failed at texel {:?} ({}): {msg}; nothing was written", &texel[..at.len()], at.iter().map(|(a, x)| format!("{a}={}", num(*x))).collect::<Vec<_>>().join(", "))]
+    FitFailed {
+        name: String,
+        texel: [usize; 3],
+        at: Vec<(String, f64)>,
+        msg: String,
     },
     #[error(
         "table {name:?}: channel {channel} of texel {:?} ({}) is not finite ({value}{}): the model is undefined or \
@@ -168,6 +177,9 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
         name: spec.name.clone(),
         msg,
     })?;
+    if spec.kind.is_ltc() {
+        return bake_ltc(spec, opts).map(|(lut, _)| lut);
+    }
     if let Some((k, zero, rest)) = smooth_texels(spec) {
         return bake_with_smooth(spec, opts, k, zero, rest);
     }
@@ -260,6 +272,7 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
                 energy::texel_fn(spec)
             }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
+            TableKind::Ltc | TableKind::LtcSphere => unreachable!("baked by bake_ltc above"),
         };
         vec![(0..n)
             .into_par_iter()
@@ -383,6 +396,106 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
         error_estimate: err,
         evaluations: evals,
     })
+}
+
+/// [`bake_with`], and for an `ltc` table with matrix channels the per-texel fit error
+/// ([`ltc::fit_channels`]) as a table of the same axes.
+pub fn bake_with_fit(
+    spec: &TableSpec,
+    opts: &BakeOptions,
+) -> Result<(Lut, Option<Lut>), BakeError> {
+    if spec.kind.is_ltc() {
+        spec.validate().map_err(|msg| BakeError::Invalid {
+            name: spec.name.clone(),
+            msg,
+        })?;
+        return bake_ltc(spec, opts);
+    }
+    Ok((bake_with(spec, opts)?, None))
+}
+
+/// The `ltc` and `ltc-sphere` kinds ([`ltc`]): a validated spec.
+fn bake_ltc(spec: &TableSpec, opts: &BakeOptions) -> Result<(Lut, Option<Lut>), BakeError> {
+    let limit = opts
+        .accept_error_estimate
+        .unwrap_or(spec.tolerance)
+        .max(spec.tolerance);
+    let stop = || opts.deadline.is_some_and(|d| d.passed());
+    let b = ltc::bake(spec, &stop, limit);
+    let n: usize = spec.axes.iter().map(|a| a.size).product();
+    let nx = spec.axes[0].size;
+    let texel_of = |t: usize| [t % nx, t / nx, 0];
+    let at = |t: usize| -> Vec<(String, f64)> {
+        let idx = texel_of(t);
+        spec.axes
+            .iter()
+            .enumerate()
+            .map(|(k, a)| (a.name.clone(), a.coord(idx[k])))
+            .collect()
+    };
+    if b.stopped {
+        return Err(BakeError::TimeLimit {
+            name: spec.name.clone(),
+            seconds: opts.deadline.map_or(0.0, |d| d.seconds),
+            texels: n,
+        });
+    }
+    if let Some((t, msg)) = b.failed {
+        return Err(BakeError::FitFailed {
+            name: spec.name.clone(),
+            texel: texel_of(t),
+            at: at(t),
+            msg,
+        });
+    }
+    let channels = channels(spec);
+    if let Some((t, c, value)) = b.non_finite {
+        return Err(BakeError::NonFinite {
+            name: spec.name.clone(),
+            texel: texel_of(t),
+            at: at(t),
+            channel: channels[c].name.clone(),
+            value,
+        });
+    }
+    if b.misses.count > 0 {
+        let mut m = b.misses;
+        m.trim();
+        return Err(BakeError::ToleranceMissed {
+            name: spec.name.clone(),
+            limit,
+            tolerance: spec.tolerance,
+            count: m.count,
+            texels: n,
+            worst: m
+                .worst
+                .iter()
+                .map(|&(estimate, t, c)| Miss {
+                    texel: texel_of(t),
+                    at: at(t),
+                    channel: channels[c].name.clone(),
+                    estimate,
+                })
+                .collect(),
+        });
+    }
+    let fit = b.fit.map(|v| Lut {
+        axes: spec.axes.clone(),
+        channels: ltc::fit_channels(),
+        data: v.iter().map(|&x| x as f32).collect(),
+        error_estimate: vec![0.0; 4],
+        evaluations: 0,
+    });
+    Ok((
+        Lut {
+            axes: spec.axes.clone(),
+            channels,
+            data: b.data,
+            error_estimate: b.max_error,
+            evaluations: b.evals,
+        },
+        fit,
+    ))
 }
 
 /// The values and error estimates of texel `idx` if it lies at α = 0, where the table holds
@@ -557,6 +670,7 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
             energy::channels(spec)
         }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
+        TableKind::Ltc | TableKind::LtcSphere => ltc::channels(spec),
     }
 }
 pub mod ltc_layout;

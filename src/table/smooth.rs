@@ -38,6 +38,9 @@ pub(crate) fn supported(spec: &TableSpec) -> Result<(), String> {
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             Some("the classic models' parameters are not an NDF's alpha")
         }
+        TableKind::Ltc | TableKind::LtcSphere => Some(
+            "the lobe at alpha = 0 is a mirror, which no LTC holds; clamp the roughness axis' values (Heitz's tables: alpha >= 1e-5)",
+        ),
         _ if spec.model.ndf == Some(NdfKind::Charlie) => Some(
             "the charlie sheen NDF has no smooth limit (its lobe concentrates at grazing half vectors)",
         ),
@@ -161,7 +164,9 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
         TableKind::Ndf
         | TableKind::Vgroove
         | TableKind::ClassicAlbedo
-        | TableKind::ClassicAlbedoAniso => {
+        | TableKind::ClassicAlbedoAniso
+        | TableKind::Ltc
+        | TableKind::LtcSphere => {
             unreachable!("refused by smooth::supported")
         }
     }

@@ -36,6 +36,14 @@ pub enum TableKind {
     /// Directional albedo of an anisotropic classic model (Ward, Ashikhmin–Shirley) over
     /// (cos θv; exponent or α; anisotropy), 3D, per view azimuth and azimuth-averaged.
     ClassicAlbedoAniso,
+    /// Linearly transformed cosines for area lights (Heitz et al. 2016) over (cos θv;
+    /// roughness), 2D: the fitted M⁻¹ in Heitz's normalization, the norm, the Fresnel term,
+    /// the horizon-clipped sphere table, as the preset's `ltc.channels` choose
+    /// (`table::ltc`).
+    Ltc,
+    /// The horizon-clipped sphere table of Heitz & Hill 2017 (EEVEE's `ltc_disk_integral`)
+    /// over (z, length) of a vector form factor, 2D (`table::ltc`).
+    LtcSphere,
 }
 
 impl TableKind {
@@ -61,6 +69,14 @@ impl TableKind {
         Self::CLASSIC.contains(&self)
     }
 
+    /// The area-light kinds (`table::ltc`); not in [`Self::ALL`].
+    pub const LTC: [TableKind; 2] = [TableKind::Ltc, TableKind::LtcSphere];
+
+    /// Whether this is one of [`Self::LTC`].
+    pub fn is_ltc(self) -> bool {
+        Self::LTC.contains(&self)
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             TableKind::Ndf => "ndf",
@@ -75,6 +91,8 @@ impl TableKind {
             TableKind::DielectricBtdf => "dielectric-btdf",
             TableKind::ClassicAlbedo => "classic-albedo",
             TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
+            TableKind::Ltc => "ltc",
+            TableKind::LtcSphere => "ltc-sphere",
         }
     }
 
@@ -93,6 +111,8 @@ impl TableKind {
             }
             TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
             TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
+            TableKind::Ltc => &["cos_theta_v", "roughness"],
+            TableKind::LtcSphere => &["form_factor_z", "form_factor_length"],
         }
     }
 
@@ -122,6 +142,12 @@ impl TableKind {
             TableKind::ClassicAlbedoAniso => {
                 "directional albedo E(cos theta_v; exponent or alpha; anisotropy) of ward or ashikhmin-shirley: view azimuth average, at 0 and at 90 degrees"
             }
+            TableKind::Ltc => {
+                "linearly transformed cosine (area lights) over (cos theta_v; roughness): the fitted M^-1, the norm int f cos, the Fresnel term int (1 - v.h)^5 f cos, the horizon-clipped sphere table"
+            }
+            TableKind::LtcSphere => {
+                "horizon-clipped sphere table (area lights): the clamped cosine's integral over a sphere whose vector form factor has length len and direction z, divided by len"
+            }
         }
     }
 }
@@ -135,6 +161,73 @@ pub enum DfgLayout {
     /// Filament (Lagarde & de Rousiers 2014 / Filament's multiscatter): R = ∫ Fc f cos,
     /// G = ∫ f cos; E = mix(R, G, F0); optional cloth B = ∫ D_Charlie·V_Ashikhmin·cos.
     Filament,
+}
+
+/// One channel of an `ltc` table (the preset's `ltc.channels`; `table::ltc` says what each
+/// holds).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LtcChannel {
+    /// Entries of the fitted `M⁻¹` divided by its middle entry `m11` (Heitz's
+    /// normalization): row 0 column 0, row 2 column 0, row 0 column 2, row 2 column 2.
+    M00,
+    M20,
+    M02,
+    M22,
+    /// `∫ f cos`: the BRDF's directional albedo (F = 1).
+    Norm,
+    /// `∫ (1 − v·h)⁵ f cos`: the Schlick-weighted part.
+    Fresnel,
+    /// The horizon-clipped sphere table at the texel's position in the texture.
+    Sphere,
+    /// 0 (padding).
+    Zero,
+}
+
+impl LtcChannel {
+    pub const ALL: [LtcChannel; 8] = [
+        LtcChannel::M00,
+        LtcChannel::M20,
+        LtcChannel::M02,
+        LtcChannel::M22,
+        LtcChannel::Norm,
+        LtcChannel::Fresnel,
+        LtcChannel::Sphere,
+        LtcChannel::Zero,
+    ];
+
+    /// The channels of an `ltc` table whose preset does not list them: the matrix, the norm
+    /// and the Fresnel term (an EXR; a texture holds 4, so engines split them over two
+    /// tables: `presets/engines/heitz-ltc.json`).
+    pub const DEFAULT: [LtcChannel; 6] = [
+        LtcChannel::M00,
+        LtcChannel::M20,
+        LtcChannel::M02,
+        LtcChannel::M22,
+        LtcChannel::Norm,
+        LtcChannel::Fresnel,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            LtcChannel::M00 => "m00",
+            LtcChannel::M20 => "m20",
+            LtcChannel::M02 => "m02",
+            LtcChannel::M22 => "m22",
+            LtcChannel::Norm => "norm",
+            LtcChannel::Fresnel => "fresnel",
+            LtcChannel::Sphere => "sphere",
+            LtcChannel::Zero => "zero",
+        }
+    }
+
+    /// Whether the channel is an entry of the fitted matrix.
+    pub fn is_matrix(self) -> bool {
+        matches!(
+            self,
+            LtcChannel::M00 | LtcChannel::M20 | LtcChannel::M02 | LtcChannel::M22
+        )
+    }
 }
 
 /// Storage precision of the written textures.
@@ -245,6 +338,9 @@ pub struct TableSpec {
     pub dfg_layout: Option<DfgLayout>,
     /// Filament layout only: add the cloth channel.
     pub cloth: bool,
+    /// The channels of an `ltc` table (the preset's `ltc.channels`, or
+    /// [`LtcChannel::DEFAULT`]); `None` for every other kind.
+    pub ltc_channels: Option<Vec<LtcChannel>>,
     pub storage: Storage,
     /// Target max absolute error of the quadrature per texel.
     pub tolerance: f64,

@@ -99,8 +99,8 @@ impl TableSpec {
                             | (TableKind::AlbedoFresnel, _)
                             | (TableKind::ClassicAlbedo, _)
                             | (TableKind::ClassicAlbedoAniso, _)
-                            | (TableKind::Vgroove, "n_dot_h")
-                    );
+                            | (TableKind::Vgroove, "n_dot_h") // (an ltc table's views: table::ltc::validate, which says why and how to clamp)
+                    ) || kind == TableKind::Ltc;
                     if !zero_ok && first <= 0.0 {
                         return Err(format!(
                             "{f}: a texel at cosine 0 is not allowed for a {} table (the quantity is undefined at 0: \
@@ -131,6 +131,13 @@ impl TableSpec {
                     for i in 0..ax.size {
                         q.check(ax.coord(i))
                             .map_err(|e| format!("{f}: texel {i}: {e}"))?;
+                    }
+                }
+                Quantity::FormFactor => {
+                    if kind != TableKind::LtcSphere {
+                        return Err(format!(
+                            "{f}: only an ltc-sphere table's axes are form-factor coordinates"
+                        ));
                     }
                 }
                 Quantity::Anisotropy => {
@@ -366,6 +373,13 @@ impl TableSpec {
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
                 unreachable!("validated above")
             }
+            TableKind::Ltc | TableKind::LtcSphere => super::ltc::validate(self)?,
+        }
+        if kind != TableKind::Ltc && self.ltc_channels.is_some() && kind != TableKind::LtcSphere {
+            return Err(format!(
+                "ltc.channels applies to ltc tables only, not {}",
+                kind.name()
+            ));
         }
         if kind != TableKind::Dfg && (self.dfg_layout.is_some() || self.cloth) {
             return Err(format!(

@@ -1,0 +1,319 @@
+//! The `ltc` table kind end to end (issue 25): Heitz's layout baked by the CLI on a grid
+//! whose texels are a subset of Heitz's published 64² texels, read back from the EXR, and
+//! judged by what a renderer gets from it — the norm channel against brdfbake's albedo, the
+//! matrix channels by the lit value of polygon lights against the quadrature ground truth,
+//! beside Heitz's published table at the same texels —; `compare` against the published
+//! `ltc.js`; and bad input refused with exit 2 and a message naming the field.
+
+#[path = "common/cli.rs"]
+mod cli;
+
+use brdfbake::kernels::ltc_check::{lit_ltc, lit_reference, test_lights};
+use brdfbake::model::ltc::Ltc;
+use brdfbake::table::albedo::directional_albedo;
+use brdfbake::table::ltc_layout::{heitz_alpha, heitz_row_mu, HeitzTable, HEITZ_SIZE};
+use cli::{assert_fails, run};
+use rayon::prelude::*;
+use serde_json::Value;
+use std::path::Path;
+
+/// Side of the test table: 22 texels on endpoints put texel `i` at `i/21 = 3i/63`, Heitz's
+/// texel `3i` on both axes (same warps and clamps), so both tables are compared at the same
+/// (μ, α) without interpolating either.
+const N: usize = 22;
+const STRIDE: usize = (HEITZ_SIZE - 1) / (N - 1);
+
+/// heitz-ltc.json (the built-in preset) with its size set to `n` and EXR only.
+fn heitz_preset(n: usize) -> String {
+    let (_, text) = brdfbake::presets::ENGINES
+        .iter()
+        .find(|(name, _)| *name == "heitz-ltc")
+        .expect("heitz-ltc is an engine preset");
+    let mut v: Value = serde_json::from_str(text).unwrap();
+    for t in v["tables"].as_array_mut().unwrap() {
+        for a in ["cos_theta_v", "roughness"] {
+            t["axes"][a]["size"] = n.into();
+        }
+        t["formats"] = serde_json::json!(["exr"]);
+    }
+    serde_json::to_string_pretty(&v).unwrap()
+}
+
+/// Bakes `preset` (JSON text) in a temporary directory; returns it and the output directory.
+fn bake(preset: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("p.json"), preset).unwrap();
+    let o = run(dir.path(), &["bake", "p.json", "--out", "out", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let out = dir.path().join("out/p");
+    (dir, out)
+}
+
+/// A baked table read back from its EXR: `(values per texel, axes' coordinates as stored,
+/// stored channel names)`; texel `x + y·nx` (x the roughness, y the view: Heitz's order).
+fn read_exr(path: &Path) -> (Vec<Vec<f64>>, Vec<String>) {
+    let rb = brdfbake::readback::read(path).unwrap();
+    let lut = rb.lut.expect("texels");
+    assert_eq!(rb.scale, 1.0);
+    let names: Vec<String> = lut.channels.iter().map(|c| c.name.clone()).collect();
+    let nc = names.len();
+    let texels = lut
+        .data
+        .chunks_exact(nc)
+        .map(|t| t.iter().map(|&x| x as f64).collect())
+        .collect();
+    (texels, names)
+}
+
+fn heitz_js() -> HeitzTable {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ltc/heitz_ltc.js");
+    HeitzTable::from_js(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+fn ggx(alpha: f64) -> brdfbake::model::Brdf {
+    let spec = brdfbake::table::ModelSpec {
+        ndf: Some(brdfbake::model::NdfKind::Ggx),
+        masking: brdfbake::model::Masking::SmithHeightCorrelated,
+        fresnel: brdfbake::model::Fresnel::None,
+        diffuse_weight: 0.0,
+        classic: None,
+    };
+    spec.brdf(alpha).unwrap()
+}
+
+/// The baked table on Heitz's grid: the stored channels are Heitz's, the norm is brdfbake's
+/// albedo, and the lit values of polygon lights through the baked LTCs are at least as close
+/// to the ground truth as through Heitz's published ones at the same texels.
+#[test]
+fn baked_heitz_table_lights_polygons_as_well_as_the_published_one() {
+    let (_keep, out) = bake(&heitz_preset(N));
+    let (t1, n1) = read_exr(&out.join("ltc_1.exr"));
+    let (t2, n2) = read_exr(&out.join("ltc_2.exr"));
+    assert_eq!(n1, ["m00", "m20", "m02", "m22"]);
+    assert_eq!(n2, ["norm", "fresnel", "zero", "sphere"]);
+    assert_eq!((t1.len(), t2.len()), (N * N, N * N));
+    let heitz = heitz_js();
+    let texel = |x: usize, y: usize| x + y * N;
+    let heitz_texel = |x: usize, y: usize| STRIDE * x + STRIDE * y * HEITZ_SIZE;
+    let mu_at = |y: usize| heitz_row_mu(STRIDE * y, HEITZ_SIZE);
+    let alpha_at = |x: usize| heitz_alpha((STRIDE * x) as f64 / (HEITZ_SIZE - 1) as f64);
+
+    // (1) norm = brdfbake's directional albedo at the texel's (μ, α): the same integrator at
+    // the same tolerance (the preset's default), so they differ by the f32 rounding of the
+    // stored texel only, at most 2⁻²⁴ relative (half an ulp; albedo ≤ 1): asserted 1.2e-7
+    // absolute. The zero channel is 0 and the sphere channel Heitz's to its printed 6
+    // significant digits (the published values are ≤ 1: 5e-6 absolute is half a unit in
+    // the 6th digit of a value near 1; compare below finds 2e-6).
+    for y in 0..N {
+        for x in 0..N {
+            let (mu, alpha) = (mu_at(y), alpha_at(x));
+            let (e, _, _) =
+                directional_albedo(&ggx(alpha), mu, brdfbake::preset::DEFAULT_TOLERANCE);
+            let v = &t2[texel(x, y)];
+            assert!(
+                (v[0] - e[0]).abs() <= 1.2e-7,
+                "texel ({x}, {y}) mu {mu} alpha {alpha}: norm {} vs albedo {}",
+                v[0],
+                e[0]
+            );
+            assert_eq!(v[2], 0.0);
+            assert!(
+                (v[3] - heitz.ltc_2[heitz_texel(x, y)][3]).abs() <= 5e-6,
+                "texel ({x}, {y}): sphere {} vs Heitz's {}",
+                v[3],
+                heitz.ltc_2[heitz_texel(x, y)][3]
+            );
+            assert!(v.iter().chain(&t1[texel(x, y)]).all(|c| c.is_finite()));
+        }
+    }
+
+    // (2) the lit value of the test set's lights (kernels/ltc_check.rs: quads and triangles,
+    // some across the horizon) at 16 texels away from the grazing row (roughness r = 0.095
+    // to 1, cos θ = 1 to 0.18), through the stored LTC and norm (f32, as a shader reads
+    // them) and through Heitz's at the same texel (ltc.js = three.js' arrays), against the
+    // ground truth by adaptive quadrature to relative 1e-6 (its error is far below the LTC
+    // errors, which are percents). The relative error |X − Y| / max(Y, 10⁻³·norm): lights
+    // holding less than 0.1% of the albedo are judged absolutely (their relative error is
+    // large for any LTC and invisible). brdfbake's fit minimizes relative lit errors of
+    // probe lights directly, Heitz's an L³ error by Monte Carlo: measured over these 640
+    // cases, mean 0.080 vs 0.183 and 90th percentile 0.201 vs 0.324 (ratios 0.44, 0.62).
+    // Asserted: strictly better, both ratios at most 0.8. The numbers are deterministic
+    // (fixed rules, fixed lights, no sampling), so the margin is not for noise but for fit
+    // changes that keep most of the advantage; a change that loses it fails, and so does a
+    // layout error (the control, m20 and m02 swapped, is ~40× worse).
+    let lights: Vec<_> = test_lights().into_iter().step_by(5).collect();
+    let cases: Vec<(usize, usize, usize)> = [2usize, 5, 10, 21]
+        .iter()
+        .flat_map(|&x| [0usize, 7, 14, 19].into_iter().map(move |y| (x, y)))
+        .flat_map(|(x, y)| (0..lights.len()).map(move |l| (x, y, l)))
+        .collect();
+    let errors: Vec<[f64; 3]> = cases
+        .par_iter()
+        .map(|&(x, y, l)| {
+            let (mu, alpha) = (mu_at(y), alpha_at(x));
+            let light = &lights[l];
+            let truth = lit_reference(&ggx(alpha), alpha, mu, light, 1e-6)
+                .unwrap()
+                .value;
+            let ours = &t1[texel(x, y)];
+            let ours = Ltc::from_heitz_texel([ours[0], ours[1], ours[2], ours[3]]).unwrap();
+            let norm = t2[texel(x, y)][0];
+            let theirs = Ltc::from_heitz_texel(heitz.ltc_1[heitz_texel(x, y)]).unwrap();
+            let their_norm = heitz.ltc_2[heitz_texel(x, y)][0];
+            // the control: our matrix with m20 and m02 swapped (the transposed layout)
+            let o = &t1[texel(x, y)];
+            let swapped = Ltc::from_heitz_texel([o[0], o[2], o[1], o[3]]);
+            let floor = (1e-3 * norm).max(truth);
+            let rel = |v: f64| (v - truth).abs() / floor;
+            [
+                rel(lit_ltc(&ours, norm, light).unwrap()),
+                rel(lit_ltc(&theirs, their_norm, light).unwrap()),
+                swapped.map_or(f64::INFINITY, |s| rel(lit_ltc(&s, norm, light).unwrap())),
+            ]
+        })
+        .collect();
+    let stat = |k: usize| {
+        let mut v: Vec<f64> = errors.iter().map(|e| e[k]).collect();
+        v.sort_by(f64::total_cmp);
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let p90 = v[(0.9 * v.len() as f64).ceil() as usize - 1];
+        (mean, p90)
+    };
+    let (ours, theirs, control) = (stat(0), stat(1), stat(2));
+    eprintln!(
+        "lit error over {} cases (mean, p90): brdfbake {ours:?}, Heitz {theirs:?}, transposed {control:?}",
+        errors.len()
+    );
+    assert!(
+        ours.0 <= 0.8 * theirs.0,
+        "mean: {ours:?} vs Heitz {theirs:?}"
+    );
+    assert!(
+        ours.1 <= 0.8 * theirs.1,
+        "p90: {ours:?} vs Heitz {theirs:?}"
+    );
+    // the control must fail the same bound, or the bound could not see a layout error
+    assert!(control.0 > 0.8 * theirs.0, "control {control:?}");
+}
+
+/// The bake is deterministic: the same bytes on 1 and 2 threads.
+#[test]
+fn bake_is_identical_on_one_and_two_threads() {
+    let text = heitz_preset(8);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("p.json"), &text).unwrap();
+    for threads in ["1", "2"] {
+        let o = run(
+            dir.path(),
+            &[
+                "bake",
+                "p.json",
+                "--out",
+                threads,
+                "--threads",
+                threads,
+                "-q",
+            ],
+        );
+        assert!(o.status.success(), "{}", cli::stderr(&o));
+    }
+    let (a, b) = (
+        cli::snapshot(&dir.path().join("1")),
+        cli::snapshot(&dir.path().join("2")),
+    );
+    assert_eq!(a.len(), 4);
+    assert_eq!(a, b);
+}
+
+/// `compare` reads the published `ltc.js` by symbol and reports per-channel differences.
+/// ltc_2: the norm's largest error is the published fit's at the grazing row (the Monte
+/// Carlo norm there is a few percent low: 0.0655 at r = 0.32, θ = 1.57), brdfbake's within
+/// its bound; the sphere channel agrees to the published 6 digits. ltc_1: the matrix
+/// channels against brdfbake's own fit (its reference is the fit itself, src/engines/mod.rs).
+#[test]
+fn compare_reads_the_published_table() {
+    let js = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ltc/heitz_ltc.js");
+    let js = js.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let doc = |table: &str| -> Value {
+        let o = run(
+            dir.path(),
+            &["compare", "heitz-ltc", js, "--table", table, "--json"],
+        );
+        assert!(o.status.success(), "{table}: {}", cli::stderr(&o));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let ch = |d: &Value, name: &str| -> Value {
+        d["channels"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["channel"] == name)
+            .unwrap_or_else(|| panic!("no channel {name}: {d}"))
+            .clone()
+    };
+    let f = |v: &Value| v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"));
+    let d2 = doc("ltc_2");
+    assert_eq!(d2["brdfbake_within_bound"], true);
+    let norm = ch(&d2, "norm");
+    let worst = f(&norm["shipped"]["max_abs"]);
+    // (0.0655 measured; the published norm is 1e-3 to 7e-2 off at grazing views)
+    assert!((0.05..0.08).contains(&worst), "{norm}");
+    assert!(f(&norm["brdfbake"]["max_abs"]) <= 1e-6, "{norm}");
+    assert!(f(&ch(&d2, "sphere")["shipped"]["max_abs"]) <= 5e-6);
+    assert!(f(&ch(&d2, "fresnel")["shipped"]["max_abs"]) < 0.05);
+    let d1 = doc("ltc_1");
+    for c in ["m00", "m20", "m02", "m22"] {
+        let s = ch(&d1, c);
+        assert_eq!(f(&s["brdfbake"]["max_abs"]), 0.0, "{s}");
+        assert!(f(&s["shipped"]["max_abs"]) > 0.0, "{s}");
+    }
+}
+
+/// Bad `ltc` tables: exit 2, a message naming the field, nothing panics.
+#[test]
+fn bad_ltc_tables_are_input_errors() {
+    let base: Value = serde_json::from_str(&heitz_preset(4)).unwrap();
+    let case = |what: &str, edit: &dyn Fn(&mut Value), expect: &[&str]| {
+        let mut v = base.clone();
+        edit(&mut v["tables"][0]);
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("p.json"), v.to_string()).unwrap();
+        let o = run(dir.path(), &["bake", "p.json", "--out", "out"]);
+        assert_fails(&o, 2, expect, what);
+        assert!(!dir.path().join("out").exists(), "{what}: wrote output");
+    };
+    case(
+        "Schlick's Fresnel in the model",
+        &|t| t["model"]["fresnel"] = serde_json::json!({ "type": "dielectric", "eta": 1.5 }),
+        &["model.fresnel", "ltc"],
+    );
+    case(
+        "no lobe",
+        &|t| t["model"] = serde_json::json!({ "masking": "none" }),
+        &["model.ndf"],
+    );
+    case(
+        "a view axis down to cos = 0 without a clamp",
+        &|t| {
+            t["axes"]["cos_theta_v"]
+                .as_object_mut()
+                .unwrap()
+                .remove("clamp");
+        },
+        &["axes.cos_theta_v", "clamp"],
+    );
+    case(
+        "an unknown channel",
+        &|t| t["ltc"]["channels"] = serde_json::json!(["m00", "m11"]),
+        &["m11"],
+    );
+    case(
+        "an ltc field on an albedo table",
+        &|t| {
+            t["kind"] = "albedo".into();
+            t.as_object_mut().unwrap().remove("shipped");
+        },
+        &["ltc", "albedo"],
+    );
+}
