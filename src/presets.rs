@@ -75,6 +75,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/gltf-lut-ggx.json"),
     ),
     (
+        "gltf-lut-sheen-e",
+        include_str!("../presets/engines/gltf-lut-sheen-e.json"),
+    ),
+    (
         "learnopengl-brdf-lut",
         include_str!("../presets/engines/learnopengl-brdf-lut.json"),
     ),

@@ -595,3 +595,66 @@ fn bsdl_sheen_energy_agrees_but_for_its_grazing_column() {
         "alpha = r^2 should not fit: {worst}"
     );
 }
+
+/// The glTF Sample Viewer's lut_sheen_E.png is not computed by the viewer's tools: it is
+/// Enterprise PBR's 16 × 16 Monte Carlo table of the sheen albedo (Charlie with Conty–Kulla's
+/// Λ, α = max(r², 0.07)) enlarged to 1024² by a cubic B-spline and stored sRGB-encoded (the
+/// preset's `source`; docs/engines.md). brdfbake's texels are exact; the PNG's differ by the
+/// source's Monte Carlo noise and the B-spline's smoothing of its 16-sample grid. On a 32 × 32
+/// spread of texels away from the grazing columns (n·v ≥ 1/16, where a 1/16 grid cannot follow
+/// E's rise), the PNG decoded from sRGB agrees on average within `SHEEN_E_MEAN` (the 16 × 16
+/// source's own rms error against exact values, 1.9e-3, measured with `compare` on a 16 × 16
+/// preset: a positive, normalized filter does not raise a mean error above the largest
+/// local error it averages, and curvature smoothing over h = 1/16 adds ~h²E''/6 < 5e-4
+/// where E'' < 0.8). Read without the sRGB decode, or with α down to 0 (no clamp), it does not.
+#[test]
+fn gltf_lut_sheen_e_is_a_smoothed_enterprise_pbr_table() {
+    const SHEEN_E_MEAN: f64 = 1.9e-3 + 5e-4;
+    let t = engine_table("gltf-lut-sheen-e", |s| s);
+    let bytes = std::fs::read(data("gltf/lut_sheen_E.png")).unwrap();
+    let sh = t.shipped.clone().unwrap();
+    let png = sh.read(&bytes, [1024, 1024, 1], "lut_sheen_E.png").unwrap();
+    let mut raw = sh.clone();
+    raw.decode = Default::default();
+    let raw = raw
+        .read(&bytes, [1024, 1024, 1], "lut_sheen_E.png")
+        .unwrap();
+    let (ax, ay) = (&t.spec.axes[0], &t.spec.axes[1]);
+    let e = |alpha: f64, mu: f64| {
+        let brdf = brdfbake::model::Brdf {
+            specular: Some(brdfbake::model::Specular {
+                ndf: brdfbake::model::Ndf::new(brdfbake::model::NdfKind::Charlie, alpha).unwrap(),
+                masking: brdfbake::model::Masking::ContyKulla,
+                fresnel: brdfbake::model::Fresnel::None,
+            }),
+            diffuse_weight: 0.0,
+        };
+        brdfbake::table::albedo::directional_albedo(&brdf, mu, 1e-8).0[0]
+    };
+    let (mut sum, mut sum_raw, mut n, mut worst_unclamped): (f64, f64, f64, f64) =
+        (0.0, 0.0, 0.0, 0.0);
+    for j in (0..1024).step_by(32).map(|j| j + 16) {
+        for i in (192..1024).step_by(26) {
+            let (mu, alpha) = (ax.coord(i), ay.alpha(j).unwrap());
+            let exact = e(alpha, mu);
+            let k = (j * 1024 + i) * 3;
+            sum += (png.values[k] - exact).abs();
+            sum_raw += (raw.values[k] - exact).abs();
+            n += 1.0;
+            let r = (j as f64 + 0.5) / 1024.0;
+            if r * r < 0.07 {
+                worst_unclamped = worst_unclamped.max((png.values[k] - e(r * r, mu)).abs());
+            }
+        }
+    }
+    let (mean, mean_raw) = (sum / n, sum_raw / n);
+    assert!(mean <= SHEEN_E_MEAN, "mean |error| {mean}");
+    assert!(
+        mean_raw > 10.0 * SHEEN_E_MEAN,
+        "read without sRGB decoding: {mean_raw}"
+    );
+    assert!(
+        worst_unclamped > 0.1,
+        "alpha = r^2 below 0.07: {worst_unclamped}"
+    );
+}
