@@ -377,3 +377,100 @@ fn axis_order_transposes_the_stored_table() {
         assert!(e.contains("axis_order") && e.contains(want), "{order}: {e}");
     }
 }
+
+/// A clamped roughness axis repeats its end value in every row beyond the clamp: tables baked
+/// by lines (a GGX split sum, a Charlie sheen albedo with Conty–Kulla's Λ, 128 × 64 with
+/// α = r² clamped to [0.07, 1]) compute those rows once and hold the same bits in each, and
+/// each such texel agrees with the texel-by-texel value at the clamped α within the two
+/// estimates (the table's largest and the adaptive integrator's) plus f32 rounding.
+#[test]
+fn clamped_rows_are_computed_once_and_hold_the_clamped_value() {
+    let clamp = 0.07f64.sqrt();
+    for (kind, ndf, masking) in [
+        (TableKind::Dfg, NdfKind::Ggx, Masking::SmithHeightCorrelated),
+        (TableKind::Albedo, NdfKind::Charlie, Masking::ContyKulla),
+    ] {
+        let mut rough = Axis::new(
+            "roughness",
+            Quantity::Roughness(RoughnessQuantity::Perceptual),
+            64,
+            [0.0, 1.0],
+            Convention::Centers,
+        );
+        rough.clamp = Some([clamp, 1.0]);
+        let spec = TableSpec {
+            name: "t".into(),
+            kind,
+            model: ModelSpec {
+                ndf: Some(ndf),
+                masking,
+                fresnel: Fresnel::None,
+                diffuse_weight: 0.0,
+                classic: None,
+            },
+            axes: vec![
+                Axis::new(
+                    "cos_theta_v",
+                    Quantity::Cosine,
+                    128,
+                    [0.0, 1.0],
+                    Convention::Centers,
+                ),
+                rough,
+            ],
+            dfg_layout: (kind == TableKind::Dfg).then_some(brdfbake::table::DfgLayout::Karis),
+            cloth: false,
+            storage: Storage::F32,
+            tolerance: 1e-7,
+            ..g1_spec(Axis::new(
+                "cos_theta",
+                Quantity::Cosine,
+                2,
+                [0.0, 1.0],
+                Convention::Centers,
+            ))
+        };
+        let lut = bake(&spec).unwrap();
+        let clamped: Vec<usize> = (0..64)
+            .filter(|&j| (j as f64 + 0.5) / 64.0 <= clamp)
+            .collect();
+        assert!(
+            clamped.len() > 10,
+            "{kind:?}: {} clamped rows",
+            clamped.len()
+        );
+        let nch = lut.channels.len();
+        let row = |j: usize| &lut.data[j * 128 * nch..(j + 1) * 128 * nch];
+        for &j in &clamped {
+            assert_eq!(row(j), row(clamped[0]), "{kind:?}: row {j}");
+        }
+        let alpha = 0.07;
+        for i in [0, 5, 40, 127] {
+            let mu = (i as f64 + 0.5) / 128.0;
+            let s = brdfbake::model::Specular {
+                ndf: brdfbake::model::Ndf::new(ndf, alpha).unwrap(),
+                masking,
+                fresnel: Fresnel::None,
+            };
+            let (want, want_err): (Vec<f64>, f64) = if kind == TableKind::Dfg {
+                let (v, e, _) = brdfbake::table::dfg::split_sum_adaptive(&s, mu, 1e-10);
+                (v.to_vec(), e[0].max(e[1]))
+            } else {
+                let b = brdfbake::model::Brdf {
+                    specular: Some(s),
+                    diffuse_weight: 0.0,
+                };
+                let (v, e, _) = brdfbake::table::albedo::directional_albedo_adaptive(&b, mu, 1e-10);
+                (v.to_vec(), e[0])
+            };
+            for (c, w) in want.iter().enumerate() {
+                let got = lut.texel([i, clamped[3], 0], c) as f64;
+                let bound = lut.error_estimate[c] + want_err + w.abs() * 2f64.powi(-24);
+                assert!(
+                    (got - w).abs() <= bound,
+                    "{kind:?} texel {i} channel {c}: {got} vs {w} (bound {bound})"
+                );
+            }
+        }
+    }
+}

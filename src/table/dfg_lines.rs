@@ -244,13 +244,25 @@ struct Plan {
     narrow_grid: Option<RoughnessLine>,
     cloth_rows: Vec<usize>,
     strip: Option<RoughnessLine>,
+    /// Per row, the row whose values it takes: itself, or the first row of the same α where
+    /// a clamp makes rows repeat one (a clamped roughness axis holds its end value in every
+    /// row beyond the clamp; those rows are computed once, and no line sees the repeats).
+    source_row: Vec<usize>,
 }
 
 /// The rules of the module doc for a table of `nx` texel columns and the rows of `ay`.
 fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
     let alpha = |j: usize| ay.alpha(j).expect("roughness axis");
-    let rows_where =
-        |p: &dyn Fn(f64) -> bool| -> Vec<usize> { (0..ay.size).filter(|&j| p(alpha(j))).collect() };
+    let mut source_row: Vec<usize> = (0..ay.size).collect();
+    for j in 1..ay.size {
+        if alpha(j).to_bits() == alpha(j - 1).to_bits() {
+            source_row[j] = source_row[j - 1];
+        }
+    }
+    let own = |j: usize| source_row[j] == j;
+    let rows_where = |p: &dyn Fn(f64) -> bool| -> Vec<usize> {
+        (0..ay.size).filter(|&j| own(j) && p(alpha(j))).collect()
+    };
     let mut pair_grids = Vec::new();
     let mut on_grid = vec![false; ay.size];
     for (k, &lo) in PAIR_BANDS.iter().enumerate() {
@@ -267,7 +279,7 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
             pair_grids.push(l);
         }
     }
-    let pair_rows = (0..ay.size).filter(|&j| !on_grid[j]).collect();
+    let pair_rows = (0..ay.size).filter(|&j| own(j) && !on_grid[j]).collect();
     if !cloth {
         return Plan {
             pair_grids,
@@ -277,6 +289,7 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
             narrow_grid: None,
             cloth_rows: Vec::new(),
             strip: None,
+            source_row,
         };
     }
     let wide = |a: f64| (CLOTH_NARROW_BELOW_ALPHA..=1.0).contains(&a);
@@ -300,7 +313,9 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
     };
     let on = |l: &Option<RoughnessLine>, j: usize| l.as_ref().is_some_and(|l| l.row.contains(&j));
     let cloth_rows = (0..ay.size)
-        .filter(|&j| !on(&cloth_grid, j) && !on(&cloth_columns, j) && !on(&narrow_grid, j))
+        .filter(|&j| {
+            own(j) && !on(&cloth_grid, j) && !on(&cloth_columns, j) && !on(&narrow_grid, j)
+        })
         .collect();
     Plan {
         pair_grids,
@@ -310,6 +325,7 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
         narrow_grid,
         cloth_rows,
         strip,
+        source_row,
     }
 }
 
@@ -802,6 +818,8 @@ fn bake_with(
         .par_chunks_mut(nx * nch)
         .enumerate()
         .map(|(j, row)| {
+            // (the texels' own index j for the checks; the values of the row that computed them)
+            let src_j = p.source_row[j];
             let mut max_error = [0.0f64; 3];
             let mut non_finite = None;
             let mut misses = super::Misses::default();
@@ -823,7 +841,7 @@ fn bake_with(
                 misses.check(limit, j * nx + i, c, e);
             };
             if ctx.pair {
-                let pair = pair_src(j);
+                let pair = pair_src(src_j);
                 for i in 0..nx {
                     let at = pair.at(i);
                     for c in 0..2 {
@@ -832,8 +850,8 @@ fn bake_with(
                 }
             }
             if ctx.cloth {
-                let (i_from, src) = cloth_src(j);
-                let strip_k = strip_at[j].map_or(0, |(_, k)| k);
+                let (i_from, src) = cloth_src(src_j);
+                let strip_k = strip_at[src_j].map_or(0, |(_, k)| k);
                 for i in 0..nx {
                     let (l, at) = if i < i_from {
                         (&strip[i], strip_k)
