@@ -182,6 +182,9 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             crate::table::energy::reconstruction(spec)
         }
+        TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+            crate::table::dielectric::reconstruction(spec)
+        }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::reconstruction(spec)
         }
@@ -210,22 +213,29 @@ fn model_json(spec: &TableSpec) -> Value {
         "fresnel": {"name": m.fresnel.name(), "formula": m.fresnel.formula(), "parameters": m.fresnel},
         "diffuse": {"name": if m.diffuse_weight > 0.0 { "lambert" } else { "none" }, "weight": m.diffuse_weight, "formula": "f_d = w_d / pi"},
     });
-    if matches!(
-        spec.kind,
-        TableKind::AlbedoFresnel | TableKind::DielectricBtdf
-    ) {
+    if spec.kind == TableKind::AlbedoFresnel || spec.kind.is_dielectric() {
+        let z = spec.axes.len() - 1;
         v["fresnel"] = json!({
             "name": "per slice, from the fresnel axis",
             "parameters": m.fresnel,
             "parameters_meaning": "the preset's model.fresnel: none (Schlick for an F0 axis, exact dielectric for an eta axis) or a conductor whose k is kept and eta replaced by the axis",
-            "slices": (0..spec.axes[2].size).map(|z| {
-                let f = crate::table::energy::fresnel_of_slice(spec, z);
+            "slices": (0..spec.axes[z].size).map(|k| {
+                let f = if spec.kind == TableKind::AlbedoFresnel {
+                    crate::table::energy::fresnel_of_slice(spec, k)
+                } else {
+                    crate::model::Fresnel::Dielectric { eta: crate::table::dielectric::eta_of_slice(spec, k) }
+                };
                 json!({"name": f.name(), "formula": f.formula(), "parameters": f})
             }).collect::<Vec<_>>(),
         });
     }
-    if spec.kind == TableKind::DielectricBtdf {
-        v["form"] = json!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, G = G1(v) G1(l) separable Smith");
+    if spec.kind.is_dielectric() {
+        let g = if m.masking == crate::model::Masking::SmithHeightCorrelated {
+            "G = 1/(1 + Lambda(v) + Lambda(l)) height-correlated Smith on both sides (as Cycles and pbrt-v4; Heitz 2014 derives B(1 + Lambda(v), 1 + Lambda(l)) for transmission)"
+        } else {
+            "G = G1(v) G1(l) separable Smith"
+        };
+        v["form"] = json!(format!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, {g}"));
     }
     if spec.kind == TableKind::Dfg {
         v["split_sum"] = json!({

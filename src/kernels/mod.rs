@@ -4,6 +4,8 @@
 //! tried it falls back (the order is in each kind's file under [`crate::table`]).
 
 pub mod classic_lobes;
+pub mod dielectric_average;
 pub mod ggx_polar;
+pub mod micro_normals;
 pub mod sheen_azimuth;
 pub mod vgroove;

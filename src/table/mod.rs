@@ -11,6 +11,7 @@ pub mod classic_model;
 pub mod dfg;
 pub mod dfg_lines;
 pub mod dielectric;
+pub mod dielectric_average;
 pub mod energy;
 pub mod local;
 pub mod methods;
@@ -204,9 +205,12 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     } else {
         None
     };
-    // (cloth albedo tables too: albedo::by_column)
+    // (cloth albedo tables too: albedo::by_column; and dielectric-albedo-avg, whose column
+    // is one roughness with every eta)
     let albedo_columns = albedo::by_column(spec);
-    let by_column = (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns;
+    let average_columns = spec.kind == TableKind::DielectricAlbedoAvg;
+    let by_column =
+        (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns || average_columns;
     // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
     // i + j·nx holds the fibre's texels in slice order
     let fibre = if by_column || dense.is_some() {
@@ -233,6 +237,8 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     } else if by_column {
         let column = if albedo_columns {
             albedo::column_fn(spec)
+        } else if average_columns {
+            dielectric_average::column_fn(spec)
         } else {
             dfg::column_fn(spec)
         };
@@ -258,6 +264,8 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 energy::texel_fn(spec)
             }
+            TableKind::DielectricAlbedo => dielectric::texel_fn(spec),
+            TableKind::DielectricAlbedoAvg => dielectric_average::texel_fn(spec),
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
         };
         vec![(0..n)
@@ -554,6 +562,9 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         },
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             energy::channels(spec)
+        }
+        TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+            dielectric::channels(spec)
         }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
     }

@@ -30,6 +30,13 @@ pub enum TableKind {
     /// Rough dielectric interface (GGX, Walter et al. 2007): reflection and transmission
     /// albedo R, T over (cos θv; roughness; η), 3D.
     DielectricBtdf,
+    /// Directional albedo E = R + T of a rough dielectric interface (GGX, exact Fresnel):
+    /// the light reflected or transmitted by single scattering, over (cos θv; roughness; η),
+    /// 3D (Cycles' `glass_E`, `glass_inv_E`).
+    DielectricAlbedo,
+    /// Average albedo E_avg = 2∫E(μ)μ dμ of a rough dielectric interface over (roughness; η),
+    /// 2D (Cycles' `glass_Eavg`, `glass_inv_Eavg`).
+    DielectricAlbedoAvg,
     /// Directional albedo of a classic analytic model (Phong, Blinn-Phong, Ward,
     /// Ashikhmin–Shirley, Lafortune): E(cos θv; exponent or α), 2D (`table::classic`).
     ClassicAlbedo,
@@ -39,7 +46,7 @@ pub enum TableKind {
 }
 
 impl TableKind {
-    pub const ALL: [TableKind; 10] = [
+    pub const ALL: [TableKind; 12] = [
         TableKind::Ndf,
         TableKind::G1,
         TableKind::G2,
@@ -50,11 +57,24 @@ impl TableKind {
         TableKind::KullaConty,
         TableKind::AlbedoFresnel,
         TableKind::DielectricBtdf,
+        TableKind::DielectricAlbedo,
+        TableKind::DielectricAlbedoAvg,
     ];
 
     /// The kinds of the classic analytic models (`table::classic`); not in [`Self::ALL`],
     /// which lists the microfacet kinds a [`ModelSpec`] without `classic` bakes.
     pub const CLASSIC: [TableKind; 2] = [TableKind::ClassicAlbedo, TableKind::ClassicAlbedoAniso];
+
+    /// The rough dielectric kinds (GGX interface, exact Fresnel of the fresnel axis' η,
+    /// integrated over micro-normals by [`crate::kernels::micro_normals`]).
+    pub fn is_dielectric(self) -> bool {
+        matches!(
+            self,
+            TableKind::DielectricBtdf
+                | TableKind::DielectricAlbedo
+                | TableKind::DielectricAlbedoAvg
+        )
+    }
 
     /// Whether this is one of [`Self::CLASSIC`].
     pub fn is_classic(self) -> bool {
@@ -73,6 +93,8 @@ impl TableKind {
             TableKind::KullaConty => "kulla-conty",
             TableKind::AlbedoFresnel => "albedo-fresnel",
             TableKind::DielectricBtdf => "dielectric-btdf",
+            TableKind::DielectricAlbedo => "dielectric-albedo",
+            TableKind::DielectricAlbedoAvg => "dielectric-albedo-avg",
             TableKind::ClassicAlbedo => "classic-albedo",
             TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
         }
@@ -88,9 +110,10 @@ impl TableKind {
             TableKind::Albedo | TableKind::Dfg => &["cos_theta_v", "roughness"],
             TableKind::AlbedoAvg => &["roughness"],
             TableKind::KullaConty => &["cos_theta_v", "roughness"],
-            TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            TableKind::AlbedoFresnel | TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
                 &["cos_theta_v", "roughness", "fresnel"]
             }
+            TableKind::DielectricAlbedoAvg => &["roughness", "fresnel"],
             TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
             TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
         }
@@ -115,6 +138,12 @@ impl TableKind {
             }
             TableKind::DielectricBtdf => {
                 "rough dielectric interface: reflection and transmission albedo R, T(cos theta_v; roughness; eta)"
+            }
+            TableKind::DielectricAlbedo => {
+                "rough dielectric interface: directional albedo E = R + T(cos theta_v; roughness; eta)"
+            }
+            TableKind::DielectricAlbedoAvg => {
+                "rough dielectric interface: average albedo E_avg = 2 int_0^1 (R + T)(mu) mu dmu (roughness; eta)"
             }
             TableKind::ClassicAlbedo => {
                 "directional albedo E(cos theta_v; exponent or alpha) of a classic model (phong, blinn-phong, ward, ashikhmin-shirley, lafortune)"

@@ -48,11 +48,30 @@ impl TableSpec {
             if ax.convention == Convention::Endpoints && ax.size < 2 {
                 return Err(format!("{f}: the endpoints convention needs size >= 2"));
             }
-            if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
+            // warps apply to cosines and to Fresnel coordinates (Cycles' sqrt of
+            // (eta - 1)/(eta + 1)); every one is strictly monotone on its coordinate domain
+            let warp_ok = matches!(
+                (ax.warp, ax.quantity),
+                (Warp::Linear, _) | (_, Quantity::Cosine | Quantity::Fresnel(_))
+            );
+            if !warp_ok {
                 return Err(format!(
-                    "{f}.warp {:?} applies to cosine axes only; this axis is linear in its quantity",
+                    "{f}.warp {:?} applies to cosine and fresnel axes only; this axis is linear in its quantity",
                     ax.warp.name()
                 ));
+            }
+            if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
+                let [dlo, dhi] = ax.warp.parameter_domain().unwrap_or([lo, hi]);
+                if lo < dlo || hi > dhi {
+                    return Err(format!(
+                        "{f}.range must lie within [{}, {}] (the range of the warp's parameter {}), got [{}, {}]",
+                        crate::numfmt::num(dlo),
+                        crate::numfmt::num(dhi),
+                        ax.warp.formula(),
+                        crate::numfmt::num(lo),
+                        crate::numfmt::num(hi)
+                    ));
+                }
             }
             if let Some([c0, c1]) = ax.clamp {
                 if !(c0.is_finite() && c1.is_finite() && c0 <= c1) {
@@ -99,6 +118,8 @@ impl TableSpec {
                             | (TableKind::AlbedoFresnel, _)
                             | (TableKind::ClassicAlbedo, _)
                             | (TableKind::ClassicAlbedoAniso, _)
+                            | (TableKind::DielectricBtdf, _)
+                            | (TableKind::DielectricAlbedo, _)
                             | (TableKind::Vgroove, "n_dot_h")
                     );
                     if !zero_ok && first <= 0.0 {
@@ -328,6 +349,9 @@ impl TableSpec {
             }
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 super::energy::validate(self)?;
+            }
+            TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+                super::dielectric::validate(self)?
             }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
                 unreachable!("validated above")
