@@ -177,6 +177,7 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::AlbedoAvg => "E_avg; Kulla-Conty multiple scattering lobe f_ms(mu_o, mu_i) = (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).",
         TableKind::Dfg => match spec.dfg_layout {
             Some(DfgLayout::Karis) => "specular = prefiltered_radiance * (F0 * A + B) (Karis 2013 split sum, Schlick Fresnel).",
+            Some(DfgLayout::KarisF82) => "specular = prefiltered_radiance * (F0 * A + F90 * B - b * F82) for the F82-tint Fresnel F = F0 + (F90 - F0)(1 - v.h)^5 - b (v.h)(1 - v.h)^6 (Hoffman 2023; with F90 = 1 and the tint F82 at cos = 1/7: b = mix(F0, 1, (6/7)^5) (1 - F82) 7^7/6^6, as EEVEE's brdf_f82_tint_lut).",
             _ => "E = (1 - F0) * R + F0 * G = mix(R, G, F0); multiscatter energy compensation: specular *= 1 + F0 * (1 / G - 1); cloth: sheen = prefiltered * B (Filament).",
         },
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {

@@ -1,6 +1,6 @@
 //! Integrals over the micro-normals h of a GGX surface seen from a view v: the nested rule
-//! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`), whose integrands are
-//! all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
+//! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`) and of the `karis-f82`
+//! dfg channel, whose integrands are all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
 //! with kinks only where this rule puts panel boundaries ([`integrate_micro_normals`]).
 //!
 //! The integrals run over the micro-normal h in the hemisphere about n, with v in the

@@ -122,7 +122,9 @@ pub fn split_sum_by_lines(spec: &TableSpec) -> bool {
         [x, y] => [x, y],
         _ => return false,
     };
-    split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
+    // (karis-f82's third channel goes texel by texel: column by column)
+    spec.dfg_layout != Some(super::DfgLayout::KarisF82)
+        && split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
         && spec.model.diffuse_weight == 0.0
         && x.size >= 2
         && x.coord(0) > 0.0

@@ -546,6 +546,11 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
                 ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
                 ch("B", "B = int Fc f cos dw_l"),
             ],
+            Some(DfgLayout::KarisF82) => vec![
+                ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
+                ch("B", "B = int Fc f cos dw_l"),
+                ch("F82", "F82 = int (v.h)(1 - v.h)^6 f cos dw_l: the F82-tint term; E = F0*A + B - b*F82"),
+            ],
             _ => {
                 let mut v = vec![
                     ch("R", "int Fc f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = mix(R, G, F0) = (1 - F0) R + F0 G"),

@@ -131,6 +131,11 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
             let fc = schlick(mu);
             TexelResult::exact(match spec.dfg_layout {
                 Some(DfgLayout::Karis) => vec![(1.0 - fc) * g, fc * g],
+                Some(DfgLayout::KarisF82) => vec![
+                    (1.0 - fc) * g,
+                    fc * g,
+                    crate::model::fresnel::f82_tint_weight(mu) * g,
+                ],
                 _ => vec![fc * g, g],
             })
         }

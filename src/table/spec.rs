@@ -161,6 +161,11 @@ impl TableKind {
 pub enum DfgLayout {
     /// Karis 2013: A = ∫(1 − Fc) f cos, B = ∫ Fc f cos; E = F0·A + B.
     Karis,
+    /// Karis' A, B and the F82-tint channel `F82 = ∫ (v·h)(1 − v·h)⁶ f cos` (EEVEE's
+    /// `brdf_ggx[64][64][3]` "metal_bias"): the albedo of the F82-tint Fresnel
+    /// F = F_Schlick − b (v·h)(1 − v·h)⁶ (Hoffman 2023, "Generalization of Adobe's Fresnel
+    /// Model"; Kutz et al. 2021) is `F0 A + B − b F82`.
+    KarisF82,
     /// Filament (Lagarde & de Rousiers 2014 / Filament's multiscatter): R = ∫ Fc f cos,
     /// G = ∫ f cos; E = mix(R, G, F0); optional cloth B = ∫ D_Charlie·V_Ashikhmin·cos.
     Filament,

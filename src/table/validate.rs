@@ -346,6 +346,16 @@ impl TableSpec {
                 if self.cloth && self.dfg_layout != Some(DfgLayout::Filament) {
                     return Err("cloth is only available with layout \"filament\"".into());
                 }
+                if self.dfg_layout == Some(DfgLayout::KarisF82)
+                    && !(m.ndf == Some(NdfKind::Ggx) && m.masking.is_smith())
+                {
+                    return Err(format!(
+                        "layout \"karis-f82\" needs model.ndf ggx with smith-separable or smith-height-correlated \
+                         masking (its F82 channel is integrated over GGX micro-normals), got {:?} with {:?}",
+                        m.ndf.map_or("none", |n| n.name()),
+                        m.masking.name()
+                    ));
+                }
             }
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 super::energy::validate(self)?;
