@@ -17,6 +17,8 @@
 //!   --no-large        skip the 512² rows
 //!   --large-size N    the size of the "512²" rows (default 512; smaller for a quick check)
 //!   --no-error        skip the measured-error column (it costs reference integrals)
+//!   --no-engines      skip the engine presets (presets/engines/*.json, one row each: their
+//!                     bake time, target ≤ 1 s each on 2 cores)
 //!   --ref-points K    reference texels per axis for integrated tables (default 6)
 //!   --work DIR        scratch directory for the outputs (default target/bench)
 //!   PRESET.json ...   presets to bake (default presets/*.json)
@@ -66,6 +68,9 @@ struct Args {
     ref_points: usize,
     work: PathBuf,
     presets: Vec<PathBuf>,
+    /// The engine presets to bake, one row each (presets/engines/*.json unless --no-engines or
+    /// presets are named).
+    engines: Vec<PathBuf>,
     /// Whether `presets` are every preset in presets/ (none named on the command line): only
     /// then is the "all presets" row the "every default preset" measurement.
     all_defaults: bool,
@@ -88,8 +93,10 @@ fn parse_args() -> Args {
         ref_points: 6,
         work: PathBuf::from("target/bench"),
         presets: Vec::new(),
+        engines: Vec::new(),
         all_defaults: false,
     };
+    let mut engines = true;
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
         let mut val = |name: &str| {
@@ -112,6 +119,7 @@ fn parse_args() -> Args {
                 a.large_size = num("--large-size", val("--large-size")).max(1.0) as usize
             }
             "--no-error" => a.error = false,
+            "--no-engines" => engines = false,
             "--ref-points" => {
                 a.ref_points = num("--ref-points", val("--ref-points")).max(2.0) as usize
             }
@@ -134,6 +142,17 @@ fn parse_args() -> Args {
         v.sort();
         a.presets = v;
         a.all_defaults = true;
+        if engines {
+            let mut e: Vec<PathBuf> = std::fs::read_dir("presets/engines")
+                .map(|d| {
+                    d.filter_map(|e| e.ok().map(|e| e.path()))
+                        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                        .collect()
+                })
+                .unwrap_or_default();
+            e.sort();
+            a.engines = e;
+        }
     }
     if !a.bin.is_file() {
         usage(&format!(
@@ -679,6 +698,27 @@ fn main() {
     let mut rows = rows_of(&label, &m, a.threads, None);
     flush(vec![rows.pop().expect("process row")]);
 
+    // every engine preset on its own, cold process (not part of "every default preset")
+    let mut engine_ms: Vec<(String, f64)> = Vec::new();
+    for p in &a.engines {
+        let name = p
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("?")
+            .to_string();
+        eprintln!("bench: engine preset {name} ({} threads) ...", a.threads);
+        let m = measure(
+            &a,
+            std::slice::from_ref(p),
+            &a.work.join("engines"),
+            a.threads,
+        );
+        engine_ms.push((name.clone(), m.wall_ms));
+        // (engine grids hold clamped, warped and alpha = 0 texels the reference's fixed
+        // breakpoints were not validated for: their accuracy is checked by tests/engines.rs)
+        flush(rows_of(&name, &m, a.threads, None));
+    }
+
     // filament-dfg at 512², 1 and 2 threads
     let mut large: Vec<(usize, f64, u64)> = Vec::new();
     let mut speedup = None;
@@ -789,6 +829,13 @@ fn main() {
             "| every default preset together, wall | ≤ 1 s | {:.1} ms | {} |",
             all_ms,
             verdict(all_ms <= 1000.0)
+        );
+    }
+    if let Some((name, ms)) = engine_ms.iter().max_by(|x, y| x.1.total_cmp(&y.1)) {
+        println!(
+            "| every engine preset on its own ({} presets), wall, slowest | ≤ 1 s each | {ms:.1} ms ({name}) | {} |",
+            engine_ms.len(),
+            verdict(*ms <= 1000.0)
         );
     }
     if a.error {

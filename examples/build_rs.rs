@@ -103,6 +103,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         accept_error_estimate: None,
         engine: None,
         axis_order: None,
+        shipped: None,
+        channels: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");
@@ -115,7 +117,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }),
         Box::new(RustSource {
             table_name: "dfg".into(),
-            half: true,
+            storage: Storage::F16,
         }),
     ];
     let mut files = Vec::new();

@@ -60,6 +60,19 @@ pub fn read_regular(path: &Path, max_bytes: u64, what: &str) -> Result<Vec<u8>, 
     Ok(bytes)
 }
 
+/// The first `n` bytes (fewer if the file is shorter) of the regular file `path`, or `None`
+/// when it is not a readable regular file (never opened then: safe on a FIFO).
+pub fn read_head(path: &Path, n: u64) -> Option<Vec<u8>> {
+    if !std::fs::metadata(path).ok()?.is_file() {
+        return None;
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(n).read_to_end(&mut bytes))
+        .ok()?;
+    Some(bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

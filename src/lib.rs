@@ -35,6 +35,7 @@ pub mod deadline;
 pub mod digest;
 pub mod encode;
 pub mod engine;
+pub mod engines;
 pub mod hemisphere;
 pub mod input;
 pub mod kernels;

@@ -68,7 +68,56 @@ pub fn inputs(table: &PresetTable) -> Value {
             .map(|&k| spec.axes[k].name.clone())
             .collect::<Vec<_>>());
     }
+    if let Some(c) = &table.channels {
+        let kind = crate::table::channels(spec);
+        v["channels"] = json!(c.iter().map(|s| s.text(&kind)).collect::<Vec<_>>());
+    }
     v
+}
+
+/// The `channels` sidecar field: per stored channel its index, name and meaning; with the
+/// preset's `channels` set, also what it stores (the preset's entry), the computed channel it
+/// is made from and the transform.
+fn channels_json(table: &PresetTable, lut: &Lut) -> Value {
+    let Some(stored) = &table.channels else {
+        return json!(lut
+            .channels
+            .iter()
+            .enumerate()
+            .map(|(i, c)| json!({"index": i, "name": c.name, "meaning": c.meaning}))
+            .collect::<Vec<_>>());
+    };
+    let kind = crate::table::channels(&table.spec);
+    json!(lut
+        .channels
+        .iter()
+        .zip(stored)
+        .enumerate()
+        .map(|(i, (c, s))| {
+            json!({
+                "index": i,
+                "name": c.name,
+                "meaning": c.meaning,
+                "stores": s.text(&kind),
+                "source": s.source().map(|k| kind[k].name.clone()),
+                "transform": s.transform(),
+            })
+        })
+        .collect::<Vec<_>>())
+}
+
+/// The one-line summary of the stored channels (`R = A, G = B, B = 0`), when `channels` is set.
+pub fn channels_summary(table: &PresetTable) -> Option<String> {
+    let stored = table.channels.as_ref()?;
+    let kind = crate::table::channels(&table.spec);
+    Some(
+        stored
+            .iter()
+            .zip(crate::preset::COMPONENT_NAMES)
+            .map(|(s, n)| format!("{n} = {}", s.text(&kind)))
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
 }
 
 /// `sha256:<hex>` of the canonical inputs and brdfbake's version.
@@ -267,6 +316,14 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
             "f16",
             "round to nearest even f16: relative 2^-11 (4.9e-4 for values <= 1)",
         ),
+        Storage::Unorm8 => (
+            "unorm8",
+            "8-bit unsigned normalized: code = round(value * scale * 255), ties to even, a sampler reads code / 255; absolute error at most half a step, 1/510 (stored units)",
+        ),
+        Storage::Unorm16 => (
+            "unorm16",
+            "16-bit unsigned normalized: code = round(value * scale * 65535), ties to even, a sampler reads code / 65535; absolute error at most half a step, 1/131070 (stored units)",
+        ),
     };
     let err: serde_json::Map<String, Value> = lut
         .channels
@@ -312,7 +369,7 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         },
         "model": model_json(spec),
         "axes": lut.axes.iter().enumerate().map(|(k, a)| axis_json(k, a)).collect::<Vec<_>>(),
-        "channels": lut.channels.iter().enumerate().map(|(i, c)| json!({"index": i, "name": c.name, "meaning": c.meaning})).collect::<Vec<_>>(),
+        "channels": channels_json(table, lut),
         "reconstruction": reconstruction(spec),
         "storage": {
             "texel_type": texel_type,
@@ -332,6 +389,38 @@ pub fn metadata(preset: &str, table: &PresetTable, lut: &Lut, files: &[(String, 
         "lookup_error": lookup_error(table, lut),
         "files": files.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
     });
+    // (only for the normalized-integer storages: float tables keep their sidecars)
+    if let Some(step) = spec.storage.quantization_step() {
+        let max = spec.storage.unorm_max().unwrap_or(0);
+        let measured = crate::encode::unorm::max_rounding_error(lut, spec.storage);
+        let st = &mut v["storage"];
+        st["quantization_step"] = json!(step);
+        st["quantization_step_meaning"] = json!(format!(
+            "1/{max}, in stored units (value x scale): the spacing of the values a sampler reads; in the table's values it is quantization_step / scale"
+        ));
+        st["rounding_error_bound"] = json!(step / 2.0);
+        st["rounding_error_bound_meaning"] = json!(
+            "quantization_step / 2, in stored units: no stored texel lies farther than this from value x scale (divide by scale for the table's values; lookup_error.texel_error includes it)"
+        );
+        st["measured_max_rounding_error"] = Value::Object(
+            lut.channels
+                .iter()
+                .zip(&measured)
+                .map(|(c, e)| (c.name.clone(), json!(e / table.scale)))
+                .collect(),
+        );
+        st["measured_max_rounding_error_meaning"] = json!(
+            "per channel, the largest |code / (2^n - 1) / scale - value| over the texels, in the table's values (value = the baked f32 texel)"
+        );
+        st["ktx2"]["channels"] = json!(format!(
+            "1 -> R, 2 -> RG, 3 -> RGBA with A = 1 (code {max}, padding), 4 -> RGBA"
+        ));
+        st["png_data"] = json!({
+            "channels": "1 -> grey, 2 -> RGB with B = 0 (PNG has no two-channel colour type), 3 -> RGB, 4 -> RGBA",
+            "bit_depth": spec.storage.bytes() * 8,
+            "layout": "as the EXR and KTX2 rows: the top image row is y = 0; the slices of a 3D table stacked downward; no colour-space chunk (linear data)",
+        });
+    }
     // (only when set: tables without an engine keep their sidecars)
     if let Some(e) = table.engine {
         v["engine"] = json!({
@@ -354,9 +443,15 @@ pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
     let interpolation = unscale(lut.interpolation_bound());
     let weights = unscale(lut.weight_rounding_bound(hw_axes));
     let relative = match spec.storage {
-        Storage::F32 => 2f64.powi(-24),
         Storage::F16 => 2f64.powi(-11),
+        // (the baked f32 texel's own rounding; UNORM adds its absolute step below)
+        Storage::F32 | Storage::Unorm8 | Storage::Unorm16 => 2f64.powi(-24),
     };
+    // UNORM: half a step, in the table's values
+    let absolute = spec
+        .storage
+        .quantization_step()
+        .map_or(0.0, |step| step / 2.0 / table.scale);
     let nc = lut.channels.len();
     let max_abs: Vec<f64> = (0..nc)
         .map(|c| {
@@ -369,7 +464,9 @@ pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
         })
         .collect();
     let texel: Vec<f64> = (0..nc)
-        .map(|c| lut.error_estimate.get(c).copied().unwrap_or(0.0) + relative * max_abs[c])
+        .map(|c| {
+            lut.error_estimate.get(c).copied().unwrap_or(0.0) + relative * max_abs[c] + absolute
+        })
         .collect();
     let per_channel = |v: &dyn Fn(usize) -> f64| -> Value {
         Value::Object(
@@ -393,7 +490,11 @@ pub fn lookup_error(table: &PresetTable, lut: &Lut) -> Value {
         "interpolation_estimate": per_channel(&|c| estimate[c]),
         "interpolation_estimate_meaning": "the typical error where the table is smooth at its resolution: max over texels of the sum over axes of |second difference of the texels along the axis| / 8, the linear-interpolation remainder h^2 |f''| / 8 at a cell's middle with h^2 f'' from the texels (exact for data quadratic along each axis)",
         "texel_error": per_channel(&|c| texel[c]),
-        "texel_error_meaning": "quadrature.estimated_max_error plus the storage rounding of the largest |value|",
+        "texel_error_meaning": if absolute > 0.0 {
+            "quadrature.estimated_max_error plus the f32 rounding of the largest |value| plus the normalized-integer rounding bound (storage.rounding_error_bound / scale)"
+        } else {
+            "quadrature.estimated_max_error plus the storage rounding of the largest |value|"
+        },
         "weight_rounding_bound": per_channel(&|c| weights[c]),
         "weight_rounding_bound_meaning": "sum over the hardware-filtered axes of the largest step between neighbouring texels / 512: the most rounding the weights to 1/256 (by at most 1/512 each) moves a lookup, the interpolant being affine in each weight with a slope of at most the cell's step",
         "hardware_filtered_axes": filtered,
@@ -413,6 +514,14 @@ pub fn header_attributes(preset: &str, table: &PresetTable, lut: &Lut) -> Vec<(S
         ("model".to_string(), model_summary(spec)),
         ("scale".to_string(), format!("{}", table.scale)),
     ];
+    // (only for the normalized-integer storages: float tables keep their attributes)
+    if spec.storage.is_unorm() {
+        v.push(("storage".to_string(), spec.storage.name().to_string()));
+    }
+    // (only when set)
+    if let Some(c) = channels_summary(table) {
+        v.push(("channels".to_string(), c));
+    }
     for (k, a) in lut.axes.iter().enumerate() {
         let mut text = format!(
             "{} {} {} [{}, {}] {} texels",

@@ -6,6 +6,7 @@
 use crate::encode::exr::ExrEncoder;
 use crate::encode::ktx2::Ktx2Encoder;
 use crate::encode::png::PngPreview;
+use crate::encode::png_data::PngData;
 use crate::encode::shader::{ShaderLang, ShaderSnippet};
 use crate::encode::source::{CHeader, RustSource};
 use crate::encode::{EncodeError, Encoder};
@@ -57,7 +58,7 @@ pub fn encode(
     attrs: &[(String, String)],
 ) -> Result<Vec<(String, Vec<u8>)>, EncodeError> {
     let name = table.spec.name.clone();
-    let half = table.spec.storage == Storage::F16;
+    let storage = table.spec.storage;
     let one = |enc: &dyn Encoder| -> Result<Vec<(String, Vec<u8>)>, EncodeError> {
         Ok(vec![(enc.extension().to_string(), enc.encode(lut, attrs)?)])
     };
@@ -72,13 +73,17 @@ pub fn encode(
             array_3d: table.layout_3d == Layout3d::Array,
         }),
         Format::Png => PngPreview { table_name: name }.encode_all_with_attributes(lut, attrs),
+        Format::PngData => one(&PngData {
+            storage,
+            table_name: name,
+        }),
         Format::H => one(&CHeader {
             table_name: name,
-            half,
+            storage,
         }),
         Format::Rs => one(&RustSource {
             table_name: name,
-            half,
+            storage,
         }),
         Format::Glsl | Format::Hlsl | Format::Wgsl => one(&ShaderSnippet {
             lang: match format {
@@ -110,6 +115,11 @@ pub fn bake_preset_until(
     deadline: Option<&crate::deadline::Deadline>,
 ) -> Result<(Vec<BakedTable>, Files), PipelineError> {
     let dir = table_dir(out, &preset.name);
+    // formats the tables' storage cannot be written in, before any work
+    for t in &preset.tables {
+        t.check_formats(formats.unwrap_or(&t.formats))
+            .map_err(|e| PipelineError::Input(format!("preset {}: {e}", preset.name)))?;
+    }
     let mut baked = Vec::new();
     let mut files = Vec::new();
     for t in &preset.tables {
@@ -118,7 +128,7 @@ pub fn bake_preset_until(
             deadline,
             accept_error_estimate: t.accept_error_estimate,
         };
-        let mut lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
+        let lut = crate::table::bake_with(&t.spec, &opts).map_err(|e| match e {
             crate::table::BakeError::TimeLimit { .. }
             | crate::table::BakeError::ToleranceMissed { .. } => {
                 PipelineError::Failed(format!("preset {}: {e}", preset.name))
@@ -126,6 +136,9 @@ pub fn bake_preset_until(
             _ => PipelineError::Input(format!("preset {}: {e}", preset.name)),
         })?;
         let elapsed = start.elapsed();
+        // the engine's channels (`channels`: values, before the scale) in its axis order
+        // (`axis_order`), where the preset gives them
+        let mut lut = t.stored(lut);
         check_underflow(t, &lut).map_err(|m| {
             PipelineError::Input(format!(
                 "preset {}: table {}: {m}",
@@ -146,8 +159,12 @@ pub fn bake_preset_until(
                 )));
             }
         }
-        // the engine's axis order, where the preset gives one
-        let lut = t.stored(lut);
+        check_unorm_range(t, &lut).map_err(|m| {
+            PipelineError::Input(format!(
+                "preset {}: table `{}`: {m}",
+                preset.name, t.spec.name
+            ))
+        })?;
         let attrs = meta::header_attributes(&preset.name, t, &lut);
         let mut names = Vec::new();
         let mut encoded_files = Vec::new();
@@ -210,6 +227,9 @@ fn check_underflow(t: &PresetTable, lut: &Lut) -> Result<(), String> {
     let (eps, name) = match t.spec.storage {
         Storage::F16 => (2f64.powi(-11), "f16"),
         Storage::F32 => (2f64.powi(-24), "f32"),
+        // UNORM rounds absolutely, by up to half a step (÷ scale in values), which the
+        // sidecar states; values it cannot hold are check_unorm_range's
+        Storage::Unorm8 | Storage::Unorm16 => return Ok(()),
     };
     let nc = lut.channels.len().max(1);
     for (k, &v) in lut.data.iter().enumerate() {
@@ -217,7 +237,7 @@ fn check_underflow(t: &PresetTable, lut: &Lut) -> Result<(), String> {
         let scaled = (v * t.scale) as f32;
         let stored = match t.spec.storage {
             Storage::F16 => half::f16::from_f32(scaled).to_f32(),
-            Storage::F32 => scaled,
+            _ => scaled,
         };
         if !stored.is_finite() {
             continue; // overflow: reported by the encoders (f16) or below (f32)
@@ -245,6 +265,36 @@ fn check_underflow(t: &PresetTable, lut: &Lut) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Refuses a UNORM table (`lut`: values × scale) with a value whose nearest code lies outside
+/// 0..=2ⁿ − 1, i.e. more than half a step outside [0, 1] (crate::encode::unorm): naming the
+/// channel, the texel, the value and what to do. Never a clamp.
+fn check_unorm_range(t: &PresetTable, lut: &Lut) -> Result<(), String> {
+    use crate::encode::unorm;
+    let Some((c, texel, v)) = unorm::first_unstorable(lut, t.spec.storage) else {
+        return Ok(());
+    };
+    let n = crate::numfmt::num;
+    let texel = &texel[..lut.axes.len()];
+    let scaled = if t.scale == 1.0 {
+        String::new()
+    } else {
+        format!(" ({} x scale {})", n(v as f64 / t.scale), n(t.scale))
+    };
+    Err(format!(
+        "channel `{}`, texel {texel:?}: the stored value {}{scaled} lies outside [0, 1], which \"storage\": {:?} holds (code = round(value x {}); nothing is clamped); {}",
+        lut.channels[c].name,
+        n(v as f64),
+        t.spec.storage.name(),
+        t.spec.storage.unorm_max().unwrap_or(0),
+        unorm::advice(
+            v as f64,
+            unorm::channel_extreme(lut, c),
+            t.scale,
+            t.spec.storage.quantization_step().unwrap_or(0.0) / 2.0
+        )
+    ))
 }
 
 /// Writes a set of encoded files atomically: every file is written to a temporary file

@@ -3,7 +3,7 @@
 //! wrong types are errors that name the field's path, and every value is checked against
 //! what is accepted before anything is baked.
 
-use crate::lut::{Axis, Convention, Lut, Quantity};
+use crate::lut::{Axis, Channel, Convention, Lut, Quantity};
 use crate::model::{Fresnel, FresnelQuantity, Masking, NdfKind, RoughnessQuantity};
 use crate::table::{DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
 use serde::Deserialize;
@@ -22,13 +22,18 @@ pub const MAX_PRESET_BYTES: u64 = 1 << 20;
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum Format {
-    /// OpenEXR, f32 or f16 per `storage`.
+    /// OpenEXR, f32 or f16 per `storage` (EXR has no normalized-integer type: not for
+    /// unorm8/unorm16 tables).
     Exr,
-    /// KTX 2.0, R/RG/RGBA 16- or 32-bit float per `storage` (3 channels padded to 4).
+    /// KTX 2.0, R/RG/RGBA 16- or 32-bit float or 8- or 16-bit UNORM per `storage` (3
+    /// channels padded to 4).
     Ktx2,
     /// 16-bit PNG previews for people (one greyscale image per channel and a false-colour
     /// image with a legend), never a texture to sample.
     Png,
+    /// The texels of a unorm8/unorm16 table as an 8- or 16-bit PNG (`TABLE.png`): data to
+    /// upload, not a preview ([`crate::encode::png_data`]).
+    PngData,
     /// C/C++ header with the texels as a `float` (or half-bit `uint16_t`) array.
     H,
     /// Rust source with the texels as a `static` array.
@@ -42,10 +47,11 @@ pub enum Format {
 }
 
 impl Format {
-    pub const ALL: [Format; 8] = [
+    pub const ALL: [Format; 9] = [
         Format::Exr,
         Format::Ktx2,
         Format::Png,
+        Format::PngData,
         Format::H,
         Format::Rs,
         Format::Glsl,
@@ -58,6 +64,7 @@ impl Format {
             Format::Exr => "exr",
             Format::Ktx2 => "ktx2",
             Format::Png => "png",
+            Format::PngData => "png-data",
             Format::H => "h",
             Format::Rs => "rs",
             Format::Glsl => "glsl",
@@ -88,6 +95,26 @@ impl Format {
             out.push(*f);
         }
         Ok(out)
+    }
+}
+
+/// Whether `storage` can be written as `format`: `None` when it can, else why not and what
+/// works instead. EXR has no normalized-integer sample type; `png-data` stores only
+/// normalized integers.
+pub fn format_refusal(storage: Storage, format: Format) -> Option<String> {
+    match (format, storage.is_unorm()) {
+        (Format::Exr, true) => Some(format!(
+            "EXR has no normalized-integer sample type, so a {} table cannot be written as exr: \
+             use ktx2, png-data, h or rs (or \"storage\": \"f16\" or \"f32\" for an EXR file)",
+            storage.name()
+        )),
+        (Format::PngData, false) => Some(format!(
+            "png-data holds normalized integers (an 8- or 16-bit PNG of the texels): it needs \
+             \"storage\": \"unorm8\" or \"unorm16\"; a {} table is written as exr, ktx2, h or rs \
+             (\"png\" gives previews for people)",
+            storage.name()
+        )),
+        _ => None,
     }
 }
 
@@ -154,6 +181,8 @@ pub enum Layout3d {
 pub struct Preset {
     pub name: String,
     pub description: String,
+    /// Where the table an engine preset reproduces lives (`source`).
+    pub source: Option<crate::engines::shipped::Source>,
     pub tables: Vec<PresetTable>,
 }
 
@@ -178,14 +207,186 @@ pub struct PresetTable {
     /// kind's axis `order[k]`. `None`: the kind's order. Engines differ (Cycles and three.js
     /// put roughness along u, Filament n·v).
     pub axis_order: Option<Vec<usize>>,
+    /// How the engine's own file holds this table (`shipped`), for `brdfbake compare`; no
+    /// effect on the bake.
+    pub shipped: Option<crate::engines::shipped::Shipped>,
+    /// The channels stored (`channels`), in texture component order (R, G, B, A), each a
+    /// function of the kind's computed channels ([`crate::table::channels`]). `None`: the
+    /// kind's channels as computed. Engines differ (the glTF Sample Viewer's Charlie LUT
+    /// holds its value in B, BSDL stores 1 − E).
+    pub channels: Option<Vec<StoredChannel>>,
 }
 
+/// One stored channel of a table whose preset sets `channels`: what texture component k
+/// holds, in terms of the kind's computed channels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StoredChannel {
+    /// The kind's channel `i` as computed (`"E"`).
+    Computed(usize),
+    /// One minus the kind's channel `i` (`"1-E"`).
+    OneMinus(usize),
+    /// The constant 0 (`"0"`).
+    Zero,
+    /// The constant 1 (`"1"`).
+    One,
+}
+
+impl StoredChannel {
+    /// The stored value, from the computed channels' values.
+    pub fn apply(self, computed: &[f64]) -> f64 {
+        match self {
+            StoredChannel::Computed(i) => computed[i],
+            StoredChannel::OneMinus(i) => 1.0 - computed[i],
+            StoredChannel::Zero => 0.0,
+            StoredChannel::One => 1.0,
+        }
+    }
+
+    /// [`Self::apply`] in f32, as the stored texels are computed from the baked f32 values
+    /// (1 − v is rounded once, to the nearest f32).
+    pub fn apply_f32(self, computed: &[f32]) -> f32 {
+        match self {
+            StoredChannel::Computed(i) => computed[i],
+            StoredChannel::OneMinus(i) => (1.0 - computed[i] as f64) as f32,
+            StoredChannel::Zero => 0.0,
+            StoredChannel::One => 1.0,
+        }
+    }
+
+    /// The computed channel it is made from, if any.
+    pub fn source(self) -> Option<usize> {
+        match self {
+            StoredChannel::Computed(i) | StoredChannel::OneMinus(i) => Some(i),
+            StoredChannel::Zero | StoredChannel::One => None,
+        }
+    }
+
+    /// The preset's spelling (`"E"`, `"1-E"`, `"0"`, `"1"`), given the kind's channels.
+    pub fn text(self, kind_channels: &[Channel]) -> String {
+        match self {
+            StoredChannel::Computed(i) => kind_channels[i].name.clone(),
+            StoredChannel::OneMinus(i) => format!("1-{}", kind_channels[i].name),
+            StoredChannel::Zero => "0".into(),
+            StoredChannel::One => "1".into(),
+        }
+    }
+
+    /// The transform's name in the sidecar.
+    pub fn transform(self) -> &'static str {
+        match self {
+            StoredChannel::Computed(_) => "identity",
+            StoredChannel::OneMinus(_) => "one minus",
+            StoredChannel::Zero => "constant 0",
+            StoredChannel::One => "constant 1",
+        }
+    }
+
+    /// Parses a preset entry against the kind's channels: `None` when it names none.
+    pub fn parse(entry: &str, kind_channels: &[Channel]) -> Option<StoredChannel> {
+        let find = |n: &str| kind_channels.iter().position(|c| c.name == n);
+        match entry {
+            "0" => Some(StoredChannel::Zero),
+            "1" => Some(StoredChannel::One),
+            _ => match entry.strip_prefix("1-") {
+                Some(n) => find(n).map(StoredChannel::OneMinus),
+                None => find(entry).map(StoredChannel::Computed),
+            },
+        }
+    }
+}
+
+/// The names of stored channels when a preset sets `channels`: the texture components.
+pub const COMPONENT_NAMES: [&str; 4] = ["R", "G", "B", "A"];
+
 impl PresetTable {
-    /// The baked table (in the kind's axis order) in its stored order.
+    /// Checks that the table can be written in `formats` (the preset's, or `bake --format`'s
+    /// in their place): the first refusal of [`format_refusal`], naming the table.
+    pub fn check_formats(&self, formats: &[Format]) -> Result<(), String> {
+        for f in formats {
+            if let Some(why) = format_refusal(self.spec.storage, *f) {
+                return Err(format!("table `{}`: {why}", self.spec.name));
+            }
+        }
+        Ok(())
+    }
+
+    /// The baked table (the kind's channels, in the kind's axis order) as stored: its stored
+    /// channels (`channels`) in its stored axis order (`axis_order`).
     pub fn stored(&self, lut: Lut) -> Lut {
+        let lut = self.stored_channels_of(lut);
         match &self.axis_order {
             Some(order) => lut.permuted(order),
             None => lut,
+        }
+    }
+
+    /// The baked table's stored channels (`channels`): every texel's stored values computed
+    /// from its computed ones, the error estimates carried along (0 for the constants).
+    fn stored_channels_of(&self, lut: Lut) -> Lut {
+        let Some(stored) = &self.channels else {
+            return lut;
+        };
+        let nc = lut.channels.len().max(1);
+        let mut data = Vec::with_capacity(lut.data.len() / nc * stored.len());
+        for texel in lut.data.chunks_exact(nc) {
+            data.extend(stored.iter().map(|s| s.apply_f32(texel)));
+        }
+        Lut {
+            channels: self.stored_channels(),
+            data,
+            error_estimate: stored
+                .iter()
+                .map(|s| s.source().map_or(0.0, |i| lut.error_estimate[i]))
+                .collect(),
+            ..lut
+        }
+    }
+
+    /// The channels as stored: the kind's ([`crate::table::channels`]), or with `channels`
+    /// set, the texture components R, G, B, A, each saying what it holds.
+    pub fn stored_channels(&self) -> Vec<Channel> {
+        let kind = crate::table::channels(&self.spec);
+        let Some(stored) = &self.channels else {
+            return kind;
+        };
+        stored
+            .iter()
+            .zip(COMPONENT_NAMES)
+            .map(|(s, name)| Channel {
+                name: name.to_string(),
+                meaning: match *s {
+                    StoredChannel::Computed(i) => {
+                        format!("{}: {}", kind[i].name, kind[i].meaning)
+                    }
+                    StoredChannel::OneMinus(i) => format!(
+                        "1 - {n}, one minus {n} = {}",
+                        kind[i].meaning,
+                        n = kind[i].name
+                    ),
+                    StoredChannel::Zero => "the constant 0".into(),
+                    StoredChannel::One => "the constant 1".into(),
+                },
+            })
+            .collect()
+    }
+
+    /// The stored channels' values from the computed ones (e.g. exact values, for `verify`
+    /// and `probe` to compare with the stored texels).
+    pub fn stored_values(&self, computed: &[f64]) -> Vec<f64> {
+        match &self.channels {
+            Some(stored) => stored.iter().map(|s| s.apply(computed)).collect(),
+            None => computed.to_vec(),
+        }
+    }
+
+    /// Error estimates of computed values carried to the stored channels (0 for constants).
+    pub fn stored_errors(&self, computed: &[f64]) -> Vec<f64> {
+        match &self.channels {
+            Some(stored) => stored
+                .iter()
+                .map(|s| s.source().map_or(0.0, |i| computed[i]))
+                .collect(),
+            None => computed.to_vec(),
         }
     }
 
@@ -262,6 +463,8 @@ struct RawPreset {
     schema: String,
     #[serde(default)]
     description: String,
+    #[serde(default)]
+    source: Option<crate::engines::shipped::Source>,
     tables: Vec<RawTable>,
 }
 
@@ -293,6 +496,9 @@ struct RawTable {
     engine: Option<Engine>,
     #[serde(default)]
     axis_order: Option<Vec<String>>,
+    #[serde(default)]
+    shipped: Option<crate::engines::shipped::Shipped>,
+    channels: Option<Vec<String>>,
 }
 
 #[derive(Deserialize)]
@@ -514,7 +720,14 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         .map_err(|(p, m)| field(at(&p), m))?;
         spec.validate()
             .map_err(|m| field(format!("tables[{i}]"), m))?;
-        let formats = t.formats.unwrap_or_else(|| vec![Format::Exr]);
+        // (EXR cannot hold normalized integers: a UNORM table's default file is the KTX2)
+        let formats = t.formats.unwrap_or_else(|| {
+            vec![if spec.storage.is_unorm() {
+                Format::Ktx2
+            } else {
+                Format::Exr
+            }]
+        });
         if formats.is_empty() {
             return Err(field(
                 at("formats"),
@@ -529,6 +742,16 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 return Err(field(
                     at(&format!("formats[{k}]")),
                     format!("{:?} is listed twice; list each format once", f.name()),
+                ));
+            }
+            if let Some(why) = format_refusal(spec.storage, *f) {
+                return Err(field(
+                    at(&format!("formats[{k}]")),
+                    format!(
+                        "{:?} with \"storage\": {:?}: {why}",
+                        f.name(),
+                        spec.storage.name()
+                    ),
                 ));
             }
         }
@@ -594,7 +817,56 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 (order.iter().enumerate().any(|(k, &o)| k != o)).then_some(order)
             }
         };
-        tables.push(PresetTable {
+        let channels = match &t.channels {
+            None => None,
+            Some(entries) => {
+                let kind = crate::table::channels(&spec);
+                let names: Vec<&str> = kind.iter().map(|c| c.name.as_str()).collect();
+                let accepted = format!(
+                    "a channel of the {} table ({}), \"1-NAME\" for one minus it (\"1-{}\"), or the constants \"0\" and \"1\"",
+                    spec.kind.name(),
+                    names.join(", "),
+                    names[0]
+                );
+                if entries.is_empty() || entries.len() > 4 {
+                    return Err(field(
+                        at("channels"),
+                        format!(
+                            "lists {} entries: a texture stores 1 to 4 channels (R, G, B, A), each {accepted}",
+                            entries.len()
+                        ),
+                    ));
+                }
+                let mut stored = Vec::new();
+                for (k, e) in entries.iter().enumerate() {
+                    let s = StoredChannel::parse(e, &kind).ok_or_else(|| {
+                        field(
+                            at(&format!("channels[{k}]")),
+                            format!("{e:?} is not a stored channel: give {accepted}"),
+                        )
+                    })?;
+                    stored.push(s);
+                }
+                if stored.iter().all(|s| s.source().is_none()) {
+                    return Err(field(
+                        at("channels"),
+                        format!(
+                            "stores only constants: store at least one of the table's channels ({})",
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                // (the kind's own channels in order are no change: the same table, the same
+                // hash, the same files)
+                let identity = stored.len() == kind.len()
+                    && stored
+                        .iter()
+                        .enumerate()
+                        .all(|(k, s)| *s == StoredChannel::Computed(k));
+                (!identity).then_some(stored)
+            }
+        };
+        let mut table = PresetTable {
             spec,
             formats,
             scale,
@@ -602,11 +874,35 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             accept_error_estimate: t.accept_error_estimate,
             engine: t.engine,
             axis_order,
-        });
+            shipped: None,
+            channels,
+        };
+        if let Some(mut sh) = t.shipped {
+            // the file's channels name stored channels: by their names (R, G, … when the
+            // table sets `channels`) or as the preset spells them ("1-E")
+            let kind = crate::table::channels(&table.spec);
+            let stored = table.stored_channels();
+            let spelled: Vec<String> = match &table.channels {
+                Some(c) => c.iter().map(|s| s.text(&kind)).collect(),
+                None => stored.iter().map(|c| c.name.clone()).collect(),
+            };
+            // (a spelling first: with `"channels": ["A", "B", "0"]` the file's "B" is the
+            // split sum's B, stored in component G, not component B)
+            for c in sh.channels.iter_mut() {
+                if let Some(k) = spelled.iter().position(|x| x == c) {
+                    *c = stored[k].name.clone();
+                }
+            }
+            let names: Vec<String> = stored.into_iter().map(|c| c.name).collect();
+            sh.validate(&names).map_err(|m| field(at("shipped"), m))?;
+            table.shipped = Some(sh);
+        }
+        tables.push(table);
     }
     Ok(Preset {
         name: name.into(),
         description: raw.description,
+        source: raw.source,
         tables,
     })
 }

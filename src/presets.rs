@@ -41,12 +41,59 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ),
 ];
 
+/// (name, JSON text) of every built-in engine preset (`presets/engines/`): each reproduces
+/// one table an engine ships, on the engine's own grid, and says where the original lives.
+/// Baked by name (`brdfbake bake cycles-ggx-e`), compared with `brdfbake compare`; a bare
+/// `brdfbake bake` leaves them out.
+pub const ENGINES: &[(&str, &str)] = &[
+    (
+        "bsdl-ggx-energy",
+        include_str!("../presets/engines/bsdl-ggx-energy.json"),
+    ),
+    (
+        "bsdl-sheen-energy",
+        include_str!("../presets/engines/bsdl-sheen-energy.json"),
+    ),
+    (
+        "cycles-ggx-e",
+        include_str!("../presets/engines/cycles-ggx-e.json"),
+    ),
+    (
+        "cycles-ggx-eavg",
+        include_str!("../presets/engines/cycles-ggx-eavg.json"),
+    ),
+    (
+        "eevee-bsdf-split-sum-ggx",
+        include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
+    ),
+    (
+        "gltf-lut-charlie",
+        include_str!("../presets/engines/gltf-lut-charlie.json"),
+    ),
+    (
+        "gltf-lut-ggx",
+        include_str!("../presets/engines/gltf-lut-ggx.json"),
+    ),
+    (
+        "learnopengl-brdf-lut",
+        include_str!("../presets/engines/learnopengl-brdf-lut.json"),
+    ),
+    (
+        "threejs-dfg-lut",
+        include_str!("../presets/engines/threejs-dfg-lut.json"),
+    ),
+    (
+        "unreal-preintegrated-gf",
+        include_str!("../presets/engines/unreal-preintegrated-gf.json"),
+    ),
+];
+
 #[cfg(test)]
 mod tests {
     /// Every built-in preset parses and validates.
     #[test]
     fn builtin_presets_are_valid() {
-        for (n, t) in super::BUILTIN {
+        for (n, t) in super::BUILTIN.iter().chain(super::ENGINES) {
             crate::preset::parse(t, n, n).unwrap_or_else(|e| panic!("{n}: {e}"));
         }
     }

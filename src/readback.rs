@@ -1,9 +1,11 @@
-//! Reading back what brdfbake wrote: a texture (EXR or KTX2) and/or its JSON sidecar
-//! (`brdfbake.lut/1`) become a [`Lut`] plus the table specification the sidecar describes,
-//! rebuilt exactly (its input hash is recomputed and compared).
+//! Reading back what brdfbake wrote: a texture (EXR, KTX2 or png-data PNG) and/or its JSON
+//! sidecar (`brdfbake.lut/1`) become a [`Lut`] plus the table specification the sidecar
+//! describes, rebuilt exactly (its input hash is recomputed and compared). Normalized-integer
+//! texels (UNORM8, UNORM16) read back as what a sampler returns, `code/(2ⁿ − 1)`.
 //!
 //! Files brdfbake did not write are rejected with [`ReadError::Input`]: an EXR needs our
-//! `brdfbake:schema` header attribute, a KTX2 our `KTXwriter`, a JSON file our schema.
+//! `brdfbake:schema` header attribute, a KTX2 our `KTXwriter`, a PNG our `brdfbake:schema`
+//! text chunk and the png-data note (a preview is refused as one), a JSON file our schema.
 
 use crate::encode::exr::{decode_exr, ATTRIBUTE_PREFIX};
 use crate::lut::{Axis, Channel, Convention, Lut, Quantity};
@@ -32,7 +34,7 @@ pub enum ReadError {
 pub struct Readback {
     /// The texture file, if one was found.
     pub texture: Option<PathBuf>,
-    /// `exr` or `ktx2` when a texture was read.
+    /// `exr`, `ktx2` or `png-data` when a texture was read.
     pub texture_format: Option<&'static str>,
     /// The sidecar's path, if one was found.
     pub sidecar_path: Option<PathBuf>,
@@ -60,7 +62,7 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
     crate::input::read_regular(
         path,
         MAX_FILE_BYTES,
-        "a .exr, .ktx2 or .json file brdfbake wrote",
+        "a .exr, .ktx2, png-data .png or .json file brdfbake wrote",
     )
     .map_err(|e| match e {
         crate::input::InputError::Input(m) => ReadError::Input(m),
@@ -80,14 +82,14 @@ fn ext_of(path: &Path) -> String {
 pub fn read(path: &Path) -> Result<Readback, ReadError> {
     let ext = ext_of(path);
     let (texture, sidecar_path) = match ext.as_str() {
-        "exr" | "ktx2" => {
+        "exr" | "ktx2" | "png" => {
             let j = path.with_extension("json");
             (Some(path.to_path_buf()), j.is_file().then_some(j))
         }
         "json" => (None, Some(path.to_path_buf())),
         _ => {
             return Err(ReadError::Input(format!(
-                "{}: not a file brdfbake reads back (accepted: .exr, .ktx2, or the .json sidecar)",
+                "{}: not a file brdfbake reads back (accepted: .exr, .ktx2, a png-data .png, or the .json sidecar)",
                 path.display()
             )))
         }
@@ -149,7 +151,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         Some(t) => Some(t),
         None => {
             let files = rb.sidecar.as_ref().and_then(|v| v.get("files"));
-            ["exr", "ktx2"].iter().find_map(|k| {
+            ["exr", "ktx2", "png"].iter().find_map(|k| {
                 let name = files?.get(*k)?.as_str()?;
                 let p = path.with_file_name(name);
                 p.is_file().then_some(p)
@@ -171,10 +173,10 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
             })?;
         }
         let ext = ext_of(&t);
-        let (lut, facts) = if ext == "exr" {
-            read_exr(&t, &bytes, rb.table.as_ref())?
-        } else {
-            read_ktx2(&t, &bytes, rb.table.as_ref())?
+        let (lut, facts) = match ext.as_str() {
+            "exr" => read_exr(&t, &bytes, rb.table.as_ref())?,
+            "png" => read_png_data(&t, &bytes, rb.table.as_ref())?,
+            _ => read_ktx2(&t, &bytes, rb.table.as_ref())?,
         };
         if rb.preset.is_none() {
             rb.preset = facts
@@ -198,7 +200,11 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         }
         rb.lut = Some(lut);
         rb.file_facts = facts;
-        rb.texture_format = Some(if ext == "exr" { "exr" } else { "ktx2" });
+        rb.texture_format = Some(match ext.as_str() {
+            "exr" => "exr",
+            "png" => "png-data",
+            _ => "ktx2",
+        });
         rb.texture = Some(t);
     }
     Ok(rb)
@@ -306,6 +312,16 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
         t.insert("engine".into(), e.clone());
     }
     t.insert("axis_order".into(), Value::Array(order));
+    // the preset's `channels`, which each stored channel states when it was set
+    let stores: Vec<Value> = get(&["channels"])
+        .and_then(Value::as_array)
+        .map_or(&[][..], Vec::as_slice)
+        .iter()
+        .filter_map(|c| c.get("stores").cloned())
+        .collect();
+    if !stores.is_empty() {
+        t.insert("channels".into(), Value::Array(stores));
+    }
     if axes.len() == 3 {
         if let Some(l) = get(&["storage", "ktx2", "layout_3d"]) {
             t.insert("layout_3d".into(), l.clone());
@@ -420,7 +436,7 @@ fn read_exr(
         )));
     }
     let (axes, chans) = match table {
-        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), t.stored_channels()),
         None => {
             let mut axes = Vec::new();
             for k in 0..3 {
@@ -583,25 +599,48 @@ fn read_ktx2(
         }));
     }
     let hd = r.header();
-    let (comp_bytes, components) =
-        match hd.format {
-            Some(::ktx2::Format::R32_SFLOAT) => (4, 1),
-            Some(::ktx2::Format::R32G32_SFLOAT) => (4, 2),
-            Some(::ktx2::Format::R32G32B32A32_SFLOAT) => (4, 4),
-            Some(::ktx2::Format::R16_SFLOAT) => (2, 1),
-            Some(::ktx2::Format::R16G16_SFLOAT) => (2, 2),
-            Some(::ktx2::Format::R16G16B16A16_SFLOAT) => (2, 4),
-            Some(f) => {
-                return Err(not_ours(format!(
-                    "its vkFormat is {f:?}; brdfbake writes R, RG or RGBA in 16- or 32-bit float"
-                )))
-            }
-            None => return Err(not_ours(
+    use crate::table::Storage;
+    use ::ktx2::Format as F;
+    let (storage, components) = match hd.format {
+        Some(F::R32_SFLOAT) => (Storage::F32, 1),
+        Some(F::R32G32_SFLOAT) => (Storage::F32, 2),
+        Some(F::R32G32B32A32_SFLOAT) => (Storage::F32, 4),
+        Some(F::R16_SFLOAT) => (Storage::F16, 1),
+        Some(F::R16G16_SFLOAT) => (Storage::F16, 2),
+        Some(F::R16G16B16A16_SFLOAT) => (Storage::F16, 4),
+        Some(F::R8_UNORM) => (Storage::Unorm8, 1),
+        Some(F::R8G8_UNORM) => (Storage::Unorm8, 2),
+        Some(F::R8G8B8A8_UNORM) => (Storage::Unorm8, 4),
+        Some(F::R16_UNORM) => (Storage::Unorm16, 1),
+        Some(F::R16G16_UNORM) => (Storage::Unorm16, 2),
+        Some(F::R16G16B16A16_UNORM) => (Storage::Unorm16, 4),
+        Some(f) => {
+            return Err(not_ours(format!(
+                "its vkFormat is {f:?}; brdfbake writes R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM"
+            )))
+        }
+        None => {
+            return Err(not_ours(
                 "its vkFormat is undefined (0: a Basis Universal or other supercompressed file?); \
-                 brdfbake writes R, RG or RGBA in 16- or 32-bit float"
+                 brdfbake writes R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM"
                     .into(),
-            )),
-        };
+            ))
+        }
+    };
+    let comp_bytes = storage.bytes();
+    if let Some(t) = table {
+        if t.spec.storage != storage {
+            return Err(mismatch(
+                path,
+                format!(
+                    "its vkFormat {:?} stores {}, the sidecar says \"storage\": {:?}",
+                    hd.format.expect("known"),
+                    storage.name(),
+                    t.spec.storage.name()
+                ),
+            ));
+        }
+    }
     if hd.supercompression_scheme.is_some() || hd.level_count != 1 {
         return Err(not_ours("supercompressed or mipmapped".into()));
     }
@@ -652,16 +691,17 @@ fn read_ktx2(
     let raw: Vec<f32> = level
         .data
         .chunks_exact(comp_bytes)
-        .map(|b| {
-            if comp_bytes == 4 {
-                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
-            } else {
-                half::f16::from_le_bytes([b[0], b[1]]).to_f32()
+        .map(|b| match storage {
+            Storage::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+            Storage::F16 => half::f16::from_le_bytes([b[0], b[1]]).to_f32(),
+            Storage::Unorm8 => crate::encode::unorm::value(b[0] as u16, 255) as f32,
+            Storage::Unorm16 => {
+                crate::encode::unorm::value(u16::from_le_bytes([b[0], b[1]]), 65535) as f32
             }
         })
         .collect();
     let (axes, chans) = match table {
-        Some(t) => (t.stored_axes(), crate::table::channels(&t.spec)),
+        Some(t) => (t.stored_axes(), t.stored_channels()),
         None => {
             let sizes: Vec<usize> = if d > 1 {
                 vec![w, h, d]
@@ -705,6 +745,220 @@ fn read_ktx2(
         },
         facts,
     ))
+}
+
+/// The largest png-data image read back: the largest table (2^24 texels) of 4 channels of
+/// 16 bits, plus room for the text chunks.
+pub const MAX_PNG_DECODED_BYTES: usize = (1 << 24) * 8 + (1 << 20);
+
+fn read_png_data(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Facts), ReadError> {
+    use crate::table::Storage;
+    let not_ours = |why: String| {
+        ReadError::Input(format!(
+            "{}: not a png-data file brdfbake wrote ({why}); a .png is read back only as png-data \
+             (the texels of a unorm table), never a preview (*.preview-*.png, for people)",
+            path.display()
+        ))
+    };
+    if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        return Err(not_ours("no PNG signature".into()));
+    }
+    let mut decoder = ::png::Decoder::new_with_limits(
+        std::io::Cursor::new(bytes),
+        ::png::Limits {
+            bytes: MAX_PNG_DECODED_BYTES,
+        },
+    );
+    // the samples as stored: no expansion, no 16-to-8 stripping, no gamma
+    decoder.set_transformations(::png::Transformations::IDENTITY);
+    let mut reader = decoder
+        .read_info()
+        .map_err(|e| not_ours(format!("invalid PNG: {e}")))?;
+    let info = reader.info();
+    let text: Vec<(String, String)> = info
+        .uncompressed_latin1_text
+        .iter()
+        .map(|t| (t.keyword.clone(), t.text.clone()))
+        .chain(
+            info.utf8_text
+                .iter()
+                .filter_map(|t| Some((t.keyword.clone(), t.get_text().ok()?))),
+        )
+        .collect();
+    let (w, h) = (info.width as usize, info.height as usize);
+    let (color, depth) = (info.color_type, info.bit_depth);
+    // (before any allocation: a hostile header may claim 2^31 x 2^31 pixels)
+    let decoded = (w as u128) * (h as u128) * 8;
+    if decoded > MAX_PNG_DECODED_BYTES as u128 {
+        return Err(not_ours(format!(
+            "its header claims {w} x {h} pixels, more than a table brdfbake writes (at most 2^24 texels)"
+        )));
+    }
+    let facts: Facts = text
+        .iter()
+        .filter_map(|(k, v)| Some((k.strip_prefix(ATTRIBUTE_PREFIX)?.to_string(), v.clone())))
+        .collect();
+    let fact = |k: &str| facts.iter().find(|(n, _)| n == k).map(|(_, v)| v.as_str());
+    if fact("schema") != Some(meta::SCHEMA) {
+        return Err(not_ours(format!(
+            "no {ATTRIBUTE_PREFIX}schema = {} text chunk",
+            meta::SCHEMA
+        )));
+    }
+    if fact("note") == Some(crate::encode::png::NOTE) {
+        return Err(ReadError::Input(format!(
+            "{}: a preview for people (its values are mapped to [min, max] of each channel), not the \
+             table's texels: read the table's .exr, .ktx2 or png-data .png",
+            path.display()
+        )));
+    }
+    if fact("note") != Some(crate::encode::png_data::NOTE) {
+        return Err(not_ours(format!(
+            "no {ATTRIBUTE_PREFIX}note = {:?} text chunk",
+            crate::encode::png_data::NOTE
+        )));
+    }
+    let storage = match depth {
+        ::png::BitDepth::Eight => Storage::Unorm8,
+        ::png::BitDepth::Sixteen => Storage::Unorm16,
+        d => {
+            return Err(not_ours(format!(
+                "bit depth {d:?}; png-data is 8- or 16-bit"
+            )))
+        }
+    };
+    let components = match color {
+        ::png::ColorType::Grayscale => 1,
+        ::png::ColorType::Rgb => 3,
+        ::png::ColorType::Rgba => 4,
+        c => {
+            return Err(not_ours(format!(
+                "colour type {c:?}; png-data is greyscale, RGB or RGBA"
+            )))
+        }
+    };
+    let (axes, chans) = match table {
+        Some(t) => {
+            if t.spec.storage != storage {
+                return Err(mismatch(
+                    path,
+                    format!(
+                        "its {}-bit samples store {}, the sidecar says \"storage\": {:?}",
+                        storage.bytes() * 8,
+                        storage.name(),
+                        t.spec.storage.name()
+                    ),
+                ));
+            }
+            (t.stored_axes(), t.stored_channels())
+        }
+        None => {
+            let mut axes = Vec::new();
+            for k in 0..3 {
+                if let Some(v) = fact(&format!("axis{k}")) {
+                    axes.push(parse_axis_attribute(v).ok_or_else(|| {
+                        not_ours(format!("unreadable {ATTRIBUTE_PREFIX}axis{k} text {v:?}"))
+                    })?);
+                }
+            }
+            if axes.is_empty() {
+                axes = generic_axes(&[w, h]);
+            }
+            let names: &[&str] = match components {
+                1 => &["grey"],
+                3 => &["R", "G", "B"],
+                _ => &["R", "G", "B", "A"],
+            };
+            let chans = names
+                .iter()
+                .map(|n| Channel {
+                    name: n.to_string(),
+                    meaning: String::new(),
+                })
+                .collect();
+            (axes, chans)
+        }
+    };
+    let nc = chans.len();
+    let expected = match nc {
+        1 => 1,
+        2 | 3 => 3,
+        _ => 4,
+    };
+    let nx = axes.first().map_or(1, |a| a.size);
+    let rows: usize = axes.iter().skip(1).map(|a| a.size).product();
+    if (w, h) != (nx, rows) || expected != components {
+        return Err(mismatch(
+            path,
+            format!(
+                "the image is {w}x{h} with {components} component(s), the sidecar describes {nx}x{rows} texels of {nc} channel(s)"
+            ),
+        ));
+    }
+    let mut buf = vec![
+        0u8;
+        reader
+            .output_buffer_size()
+            .ok_or_else(|| not_ours("the image is too large".into()))?
+    ];
+    let frame = reader
+        .next_frame(&mut buf)
+        .map_err(|e| not_ours(format!("invalid PNG data: {e}")))?;
+    let buf = &buf[..frame.buffer_size()];
+    let max = storage.unorm_max().expect("unorm");
+    let samples: Vec<u16> = match storage {
+        Storage::Unorm8 => buf.iter().map(|&b| b as u16).collect(),
+        _ => buf
+            .chunks_exact(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect(),
+    };
+    if samples.len() != w * h * components {
+        return Err(not_ours(format!(
+            "{} samples, the header's {w} x {h} x {components} need {}",
+            samples.len(),
+            w * h * components
+        )));
+    }
+    let mut data = Vec::with_capacity(w * h * nc);
+    for texel in samples.chunks_exact(components) {
+        // (a 2-channel table's B is padding: 0)
+        if nc == 2 && texel[2] != 0 {
+            return Err(mismatch(
+                path,
+                "a two-channel table's B samples are 0 in png-data, this file's are not".into(),
+            ));
+        }
+        data.extend(
+            texel[..nc]
+                .iter()
+                .map(|&c| crate::encode::unorm::value(c, max) as f32),
+        );
+    }
+    Ok((
+        Lut {
+            axes,
+            channels: chans,
+            data,
+            error_estimate: vec![f64::NAN; nc],
+            evaluations: 0,
+        },
+        facts,
+    ))
+}
+
+/// Decodes the bytes of a png-data file as `read` does for `path` (no disk access), checked
+/// against `table` when given.
+pub fn read_png_data_bytes(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Vec<(String, String)>), ReadError> {
+    read_png_data(path, bytes, table)
 }
 
 /// Per-channel statistics of stored texels.

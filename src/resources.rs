@@ -10,7 +10,6 @@
 
 use crate::numfmt::{human_bytes, human_seconds};
 use crate::preset::{Format, Preset, PresetTable};
-use crate::table::Storage;
 
 /// The default `--max-memory`: 2 GiB.
 pub const DEFAULT_MAX_MEMORY: u64 = 2 << 30;
@@ -55,11 +54,11 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
         .axes
         .iter()
         .fold(1u64, |n, a| n.saturating_mul(a.size as u64));
-    let channels = crate::table::channels(&t.spec).len() as u64;
-    let stored = match t.spec.storage {
-        Storage::F32 => 4,
-        Storage::F16 => 2,
-    };
+    // (the kind's channels and the stored ones both live while a table is stored)
+    let channels = crate::table::channels(&t.spec)
+        .len()
+        .max(t.stored_channels().len()) as u64;
+    let stored = t.spec.storage.bytes() as u64;
     // the Lut's f32 texels
     let mut per_texel: u64 = channels * 4;
     for f in formats {
@@ -69,6 +68,8 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
             Format::Ktx2 => 2 * channels.max(if channels == 3 { 4 } else { 1 }) * stored,
             // 16-bit grey image per channel + 16-bit RGB false colour, raw and compressed
             Format::Png => 2 * (channels * 2 + 6),
+            // the codes (u16), the image rows (at most 4 components) raw and compressed
+            Format::PngData => channels * 2 + 2 * 4 * stored,
             Format::H | Format::Rs => channels * TEXT_BYTES_PER_VALUE,
             // a lookup function: no texels
             Format::Glsl | Format::Hlsl | Format::Wgsl => 0,
@@ -176,7 +177,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         K::Dfg => {
             let interpolated = crate::table::methods::split_sum_by_lines(spec);
             let nx = spec.axes[0].size as f64;
-            if interpolated && nx >= crate::table::dfg_lines::GRID_MIN_COLUMNS as f64 {
+            if interpolated && nx >= crate::table::methods::GRID_MIN_COLUMNS as f64 {
                 let (cloth, cloth_fixed) = if spec.cloth {
                     (2.0, 0.85e6)
                 } else {

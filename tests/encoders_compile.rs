@@ -1,8 +1,9 @@
 //! The source and preview encoders, checked by their consumers: generated C headers are
 //! compiled with the machine's C (and C++) compiler, generated Rust sources with rustc, and
-//! the programs print every stored value's bits, which must equal the baked table's (f32) or
-//! its round-to-nearest-even f16 conversion (half). PNG previews are decoded with the `image`
-//! and `png` crates. Requires `cc`, `c++` and `rustc` on the PATH (`$RUSTC` if set); without
+//! the programs print every stored value's bits, which must equal the baked table's (f32),
+//! its round-to-nearest-even f16 conversion (half) or its UNORM8/UNORM16 code (computed here
+//! independently: round half to even of value × (2ⁿ − 1)). PNG previews are decoded with the
+//! `image` and `png` crates. Requires `cc`, `c++` and `rustc` on the PATH (`$RUSTC` if set); without
 //! them these tests fail rather than skip.
 
 use brdfbake::encode::png::{PngPreview, NOTE};
@@ -119,6 +120,8 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         accept_error_estimate: None,
         engine: None,
         axis_order: None,
+        shipped: None,
+        channels: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((
@@ -129,8 +132,10 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
     a
 }
 
-/// A table of values that are hard to print exactly.
-fn tricky_lut(half: bool) -> Lut {
+/// A table of values that are hard to print exactly (for UNORM: hard to round: ties, the ends
+/// and values within half a step outside [0, 1]).
+fn tricky_lut(storage: Storage) -> Lut {
+    let half = storage == Storage::F16;
     let mut values: Vec<f32> = vec![
         1.0,
         -0.0,
@@ -144,7 +149,25 @@ fn tricky_lut(half: bool) -> Lut {
         f32::from_bits(0x3f80_0001),
         -65519.0,
     ];
-    if !half {
+    if let Some(max) = storage.unorm_max() {
+        let m = max as f32;
+        values = vec![
+            0.0,
+            1.0,
+            0.5,
+            1.0 / 3.0,
+            2.0 / 3.0,
+            0.1,
+            1e-8,
+            0.999_999,
+            // near ties: k + 1/2 steps, rounded to f32 (0.5 above is an exact tie)
+            2.5 / m,
+            3.5 / m,
+            // within half a step outside [0, 1]: the end codes
+            -0.4 / m,
+            1.0 + 0.4 / m,
+        ];
+    } else if !half {
         values.extend([
             f32::from_bits(1),
             f32::MIN_POSITIVE,
@@ -174,18 +197,37 @@ fn tricky_lut(half: bool) -> Lut {
     }
 }
 
+/// The UNORM code of `v` computed here, independently of the encoders: the nearest integer
+/// to v·max, a tie going to the even one.
+fn unorm_code(v: f32, max: u32) -> u32 {
+    let x = v as f64 * max as f64;
+    let f = x.floor();
+    let c = match (x - f).partial_cmp(&0.5).unwrap() {
+        std::cmp::Ordering::Less => f,
+        std::cmp::Ordering::Greater => f + 1.0,
+        std::cmp::Ordering::Equal if f % 2.0 == 0.0 => f,
+        std::cmp::Ordering::Equal => f + 1.0,
+    };
+    assert!((0.0..=max as f64).contains(&c), "{v} is not storable");
+    c as u32
+}
+
 /// The bits a program must print for each stored value.
-fn expected_bits(lut: &Lut, half: bool) -> Vec<String> {
+fn expected_bits(lut: &Lut, storage: Storage) -> Vec<String> {
     lut.data
         .iter()
-        .map(|&v| {
-            if half {
-                format!("{:04x}", f16::from_f32(v).to_bits())
-            } else {
-                format!("{:08x}", v.to_bits())
-            }
+        .map(|&v| match storage {
+            Storage::F16 => format!("{:04x}", f16::from_f32(v).to_bits()),
+            Storage::F32 => format!("{:08x}", v.to_bits()),
+            Storage::Unorm8 => format!("{:02x}", unorm_code(v, 255)),
+            Storage::Unorm16 => format!("{:04x}", unorm_code(v, 65535)),
         })
         .collect()
+}
+
+/// Whether every value of `lut` fits `storage` (UNORM holds [0, 1]).
+fn fits(lut: &Lut, storage: Storage) -> bool {
+    !storage.is_unorm() || lut.data.iter().all(|v| (0.0..=1.0).contains(v))
 }
 
 /// The first lines every test program prints: the size constants and the channel names.
@@ -221,21 +263,21 @@ fn run(cmd: &mut Command, what: &str) -> String {
 
 /// Compiles the header of `lut` into a C and a C++ program that print the sizes, the channel
 /// names and every value's bits, runs them and compares with the table.
-fn check_c(name: &str, lut: &Lut, half: bool, attrs: &[(String, String)]) {
+fn check_c(name: &str, lut: &Lut, storage: Storage, attrs: &[(String, String)]) {
     let dir = tempfile::tempdir().unwrap();
     let encoder = CHeader {
         table_name: name.into(),
-        half,
+        storage,
     };
     assert_eq!(encoder.extension(), "h");
     let header = encoder.encode(lut, attrs).unwrap();
     assert_eq!(encoder.encode(lut, attrs).unwrap(), header, "deterministic");
     std::fs::write(dir.path().join("table.h"), &header).unwrap();
     let id = constant_identifier(name);
-    let (ty, fmt) = if half {
-        ("uint16_t", "%04x")
-    } else {
-        ("uint32_t", "%08x")
+    let (ty, fmt) = match storage {
+        Storage::F16 | Storage::Unorm16 => ("uint16_t", "%04x"),
+        Storage::Unorm8 => ("uint8_t", "%02x"),
+        Storage::F32 => ("uint32_t", "%08x"),
     };
     let program = format!(
         r#"#include <stdio.h>
@@ -261,7 +303,7 @@ int main(void) {{
     let src = dir.path().join("main.c");
     std::fs::write(&src, program).unwrap();
     let mut expected = expected_header(lut);
-    expected.extend(expected_bits(lut, half));
+    expected.extend(expected_bits(lut, storage));
     for (compiler, flags) in [
         ("cc", &["-std=c99", "-pedantic"][..]),
         ("c++", &["-x", "c++", "-std=c++11"][..]),
@@ -278,28 +320,28 @@ int main(void) {{
         );
         let out = run(&mut Command::new(&exe), "running the C program");
         let lines: Vec<&str> = out.lines().collect();
-        assert_eq!(lines, expected, "{name} (half: {half}) via {compiler}");
+        assert_eq!(lines, expected, "{name} ({storage:?}) via {compiler}");
     }
 }
 
 /// Compiles the Rust source of `lut` as a module of a program that prints the sizes, the
 /// channel names and every value's bits, runs it and compares with the table; with `include`,
 /// the file is pulled in with `include!` instead.
-fn check_rust(name: &str, lut: &Lut, half: bool, attrs: &[(String, String)], include: bool) {
+fn check_rust(name: &str, lut: &Lut, storage: Storage, attrs: &[(String, String)], include: bool) {
     let dir = tempfile::tempdir().unwrap();
     let encoder = RustSource {
         table_name: name.into(),
-        half,
+        storage,
     };
     assert_eq!(encoder.extension(), "rs");
     let source = encoder.encode(lut, attrs).unwrap();
     assert_eq!(encoder.encode(lut, attrs).unwrap(), source, "deterministic");
     std::fs::write(dir.path().join("table.rs"), &source).unwrap();
     let id = constant_identifier(name);
-    let print = if half {
-        "println!(\"{v:04x}\")"
-    } else {
-        "println!(\"{:08x}\", v.to_bits())"
+    let print = match storage {
+        Storage::F16 | Storage::Unorm16 => "println!(\"{v:04x}\")",
+        Storage::Unorm8 => "println!(\"{v:02x}\")",
+        Storage::F32 => "println!(\"{:08x}\", v.to_bits())",
     };
     let module = if include {
         "mod table {\n    include!(\"table.rs\");\n}"
@@ -339,20 +381,25 @@ fn main() {{
     let out = run(&mut Command::new(&exe), "running the Rust program");
     let lines: Vec<&str> = out.lines().collect();
     let mut expected = expected_header(lut);
-    expected.extend(expected_bits(lut, half));
-    assert_eq!(lines, expected, "{name} (half: {half})");
+    expected.extend(expected_bits(lut, storage));
+    assert_eq!(lines, expected, "{name} ({storage:?})");
 }
 
 #[test]
 fn c_headers_compile_and_hold_the_exact_values() {
+    let mut unorm = 0;
     for (spec, lut) in tables() {
         let attrs = attributes(spec, lut);
-        for half in [false, true] {
-            check_c(&spec.name, lut, half, &attrs);
+        for storage in Storage::ALL {
+            if fits(lut, storage) {
+                unorm += usize::from(storage.is_unorm());
+                check_c(&spec.name, lut, storage, &attrs);
+            }
         }
     }
-    for half in [false, true] {
-        check_c("tricky", &tricky_lut(half), half, &[]);
+    assert!(unorm >= 2, "a baked table in each UNORM storage");
+    for storage in Storage::ALL {
+        check_c("tricky", &tricky_lut(storage), storage, &[]);
     }
 }
 
@@ -360,12 +407,57 @@ fn c_headers_compile_and_hold_the_exact_values() {
 fn rust_sources_compile_and_hold_the_exact_values() {
     for (spec, lut) in tables() {
         let attrs = attributes(spec, lut);
-        for half in [false, true] {
-            check_rust(&spec.name, lut, half, &attrs, false);
+        for storage in Storage::ALL {
+            if fits(lut, storage) {
+                check_rust(&spec.name, lut, storage, &attrs, false);
+            }
         }
     }
-    for half in [false, true] {
-        check_rust("tricky", &tricky_lut(half), half, &[], half);
+    for storage in Storage::ALL {
+        check_rust(
+            "tricky",
+            &tricky_lut(storage),
+            storage,
+            &[],
+            storage == Storage::F16,
+        );
+    }
+}
+
+/// A value more than half a step outside [0, 1] is an error naming the channel, the texel and
+/// the value, in every UNORM encoder; nothing is clamped.
+#[test]
+fn unorm_sources_reject_values_outside_the_unit_interval() {
+    for storage in [Storage::Unorm8, Storage::Unorm16] {
+        let max = storage.unorm_max().unwrap() as f32;
+        for (bad, at) in [(1.0 + 0.6 / max, 4), (-0.6 / max, 7)] {
+            let mut lut = tricky_lut(storage);
+            lut.data[at] = bad;
+            for encoder in [
+                &CHeader {
+                    table_name: "t".into(),
+                    storage,
+                } as &dyn Encoder,
+                &RustSource {
+                    table_name: "t".into(),
+                    storage,
+                },
+            ] {
+                match encoder.encode(&lut, &[]) {
+                    Err(EncodeError::OutOfUnitRange {
+                        channel,
+                        texel,
+                        value,
+                        ..
+                    }) => {
+                        assert_eq!(channel, lut.channels[at % 3].name);
+                        assert_eq!(texel, vec![at / 3]);
+                        assert_eq!(value, bad as f64);
+                    }
+                    other => panic!("{storage:?} {bad}: {other:?}"),
+                }
+            }
+        }
     }
 }
 
@@ -377,7 +469,7 @@ fn sources_document_the_table() {
         (
             CHeader {
                 table_name: spec.name.clone(),
-                half: false,
+                storage: Storage::F32,
             }
             .encode(lut, &attrs)
             .unwrap(),
@@ -386,7 +478,7 @@ fn sources_document_the_table() {
         (
             RustSource {
                 table_name: spec.name.clone(),
-                half: true,
+                storage: Storage::F16,
             }
             .encode(lut, &attrs)
             .unwrap(),
@@ -419,22 +511,22 @@ fn sources_document_the_table() {
 
 #[test]
 fn half_sources_reject_values_beyond_f16() {
-    let mut lut = tricky_lut(false);
+    let mut lut = tricky_lut(Storage::F32);
     let big = lut.data.iter().position(|&v| v == f32::MAX).unwrap();
     assert!(CHeader {
         table_name: "t".into(),
-        half: false
+        storage: Storage::F32
     }
     .encode(&lut, &[])
     .is_ok());
     for encoder in [
         &CHeader {
             table_name: "t".into(),
-            half: true,
+            storage: Storage::F16,
         } as &dyn Encoder,
         &RustSource {
             table_name: "t".into(),
-            half: true,
+            storage: Storage::F16,
         },
     ] {
         match encoder.encode(&lut, &[]) {
@@ -449,7 +541,7 @@ fn half_sources_reject_values_beyond_f16() {
     assert!(matches!(
         RustSource {
             table_name: "t".into(),
-            half: false
+            storage: Storage::F32
         }
         .encode(&lut, &[]),
         Err(EncodeError::NonFinite { .. })
@@ -624,7 +716,7 @@ fn png_previews_are_deterministic_and_carry_the_attributes() {
 
 #[test]
 fn png_preview_of_a_constant_1d_table() {
-    let mut lut = tricky_lut(false);
+    let mut lut = tricky_lut(Storage::F32);
     lut.data.iter_mut().for_each(|v| *v = 0.25);
     let files = PngPreview {
         table_name: "flat".into(),

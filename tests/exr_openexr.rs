@@ -105,6 +105,7 @@ fn check(name: &str, lut: &Lut, storage: Storage) {
         let expected_type = match storage {
             Storage::F32 => "FLOAT",
             Storage::F16 => "HALF",
+            s => unreachable!("EXR has no {s:?}"),
         };
         assert_eq!(channel["type"], expected_type, "{name}/{cname}");
         assert_eq!(channel["x_sampling"], 1, "{name}/{cname}");
@@ -123,6 +124,7 @@ fn check(name: &str, lut: &Lut, storage: Storage) {
                             let h = f16::from_f32(v);
                             (h.to_bits() as u64, h.to_f32())
                         }
+                        s => unreachable!("EXR has no {s:?}"),
                     };
                     expected_bits.push(bits);
                     expected_values.push(stored);

@@ -36,33 +36,47 @@ fn round(v: f64) -> f64 {
     1e-12 * v.abs().max(1.0)
 }
 
-fn masking(s: Smith) -> Masking {
-    match s {
-        Smith::HeightCorrelated => Masking::SmithHeightCorrelated,
-        Smith::Separable => Masking::SmithSeparable,
+/// The masking terms the kernel takes.
+const FORMS: [Masking; 4] = [
+    Masking::SmithHeightCorrelated,
+    Masking::SmithSeparable,
+    Masking::SchlickGgx,
+    Masking::SchlickGgxDirect,
+];
+
+/// The kernel's form of a masking term at α, with Schlick's k written here from Karis
+/// (2013): α/2, and (√α + 1)²/8 for analytic lights.
+fn smith(m: Masking, alpha: f64) -> Smith {
+    match m {
+        Masking::SmithHeightCorrelated => Smith::HeightCorrelated,
+        Masking::SmithSeparable => Smith::Separable,
+        Masking::SchlickGgx => Smith::Schlick { k: alpha / 2.0 },
+        Masking::SchlickGgxDirect => Smith::Schlick {
+            k: (alpha.sqrt() + 1.0).powi(2) / 8.0,
+        },
+        other => panic!("not a kernel form: {other:?}"),
     }
 }
 
-/// Both Smith forms, split sum and albedo: the kernel must converge at EVERY point (it is
-/// the table path's first choice; a fallback would cost the speed it exists for) and be
-/// within REQ of the reference and within its own estimate plus the reference's.
+/// Both Smith forms and both Schlick-GGX forms (Karis' k = α/2 and (√α + 1)²/8), split sum
+/// and albedo: the kernel must converge at EVERY point (it is the table path's first
+/// choice; a fallback would cost the speed it exists for) and be within REQ of the reference
+/// (which writes Schlick's G1 and Karis' k itself) and within its own estimate plus the
+/// reference's.
 #[test]
 fn matches_reference_everywhere_and_its_estimate_holds() {
     let mus = [1e-3, 0.02, 0.1, 0.35, 0.7, 0.999, 1.0];
     let alphas = [1e-3, 0.01, 0.1, 0.3, 0.6, 1.0];
-    let pts: Vec<(f64, f64, Smith)> = mus
+    let pts: Vec<(f64, f64, Masking)> = mus
         .iter()
-        .flat_map(|&mu| {
-            alphas
-                .iter()
-                .flat_map(move |&a| [Smith::HeightCorrelated, Smith::Separable].map(|s| (mu, a, s)))
-        })
+        .flat_map(|&mu| alphas.iter().flat_map(move |&a| FORMS.map(|m| (mu, a, m))))
         .collect();
     let failures: Vec<String> = pts
         .par_iter()
-        .flat_map_iter(|&(mu, alpha, smith)| {
+        .flat_map_iter(|&(mu, alpha, masking)| {
+            let smith = smith(masking, alpha);
             let r = reference::split_sum(
-                &RefModel::new(NdfKind::Ggx, alpha, masking(smith)),
+                &RefModel::new(NdfKind::Ggx, alpha, masking),
                 mu,
                 REF_TOL,
             );
@@ -145,9 +159,16 @@ fn table_corners_converge_and_match_tight_adaptive() {
 }
 
 /// Out-of-domain inputs are refused (the caller falls back), never answered: α > 1 (the
-/// closed forms assume M = m(1 − α²) ≥ 0), α ≤ 0, μ ≤ 0, NaN.
+/// closed forms assume M = m(1 − α²) ≥ 0), α ≤ 0, μ ≤ 0, NaN, and a Schlick k outside (0, 1)
+/// (at k = 1 its G1 is μ, at k ≤ 0 it is 1 or negative).
 #[test]
 fn refuses_what_it_does_not_cover() {
+    for k in [0.0, 1.0, -0.1, f64::NAN] {
+        assert!(
+            ggx_split_sum(0.5, 0.5, Smith::Schlick { k }, LIB_TOL).is_err(),
+            "{k}"
+        );
+    }
     for (mu, a) in [
         (0.5, 1.5),
         (0.5, 0.0),
@@ -208,11 +229,51 @@ fn dense_grid_within_estimates_against_tight_adaptive() {
     );
 }
 
+/// As [`dense_grid_within_estimates_against_tight_adaptive`] for the two Schlick-GGX
+/// forms (Unreal's and LearnOpenGL's k = α/2, Karis' direct-light k = (√α + 1)²/8), on a
+/// 12 × 12 geometric grid μ = 1/1024 … 0.999 (the normal view needs the 1D reference, written
+/// for Smith's form), α = 1e-6 … 1, at tol 1e-7 and 2.5e-8 against the adaptive 2D integrator
+/// at 1e-12: Schlick's G1 turns over at μl ≈ k/(1 − k) instead of Smith's ≈ min(μv, α)
+/// (`horizon_scale`), so its panels differ, and the estimates must still hold everywhere.
+#[test]
+fn schlick_forms_within_estimates_against_tight_adaptive() {
+    let n = 12;
+    let geo = |lo: f64, hi: f64, i: usize| lo * (hi / lo).powf(i as f64 / (n - 1) as f64);
+    let pts: Vec<(f64, f64, Masking)> = (0..n)
+        .flat_map(|i| {
+            (0..n).flat_map(move |j| {
+                [Masking::SchlickGgx, Masking::SchlickGgxDirect]
+                    .map(|m| (geo(1.0 / 1024.0, 0.999, i), geo(1e-6, 1.0, j), m))
+            })
+        })
+        .collect();
+    let failures: Vec<String> = pts
+        .par_iter()
+        .flat_map_iter(|&(mu, alpha, m)| {
+            let (r, re, _) = split_sum_adaptive(&ggx(alpha, m), mu, 1e-12);
+            [2.5e-8, 1e-7]
+                .into_iter()
+                .flat_map(move |tol| within_estimates_of(smith(m, alpha), mu, alpha, tol, (r, re)))
+        })
+        .collect();
+    assert!(
+        failures.is_empty(),
+        "{} failure(s):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
 /// GGX with height-correlated Smith masking and F = 1, the model of the kernel's split sum.
 fn ggx_hc(alpha: f64) -> Specular {
+    ggx(alpha, Masking::SmithHeightCorrelated)
+}
+
+/// GGX with `masking` and F = 1.
+fn ggx(alpha: f64, masking: Masking) -> Specular {
     Specular {
         ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
-        masking: Masking::SmithHeightCorrelated,
+        masking,
         fresnel: Fresnel::None,
     }
 }
@@ -220,15 +281,25 @@ fn ggx_hc(alpha: f64) -> Specular {
 /// The kernel at (μ, α) and `tol` against a reference (values, estimates): a failure where
 /// it declines, where it differs from the reference by more than both estimates plus
 /// `round`, or where its own estimate exceeds `tol`.
-fn within_estimates(mu: f64, alpha: f64, tol: f64, (r, re): ([f64; 2], [f64; 2])) -> Vec<String> {
+fn within_estimates(mu: f64, alpha: f64, tol: f64, r: ([f64; 2], [f64; 2])) -> Vec<String> {
+    within_estimates_of(Smith::HeightCorrelated, mu, alpha, tol, r)
+}
+
+fn within_estimates_of(
+    smith: Smith,
+    mu: f64,
+    alpha: f64,
+    tol: f64,
+    (r, re): ([f64; 2], [f64; 2]),
+) -> Vec<String> {
     let mut f = Vec::new();
-    match ggx_split_sum(mu, alpha, Smith::HeightCorrelated, tol) {
+    match ggx_split_sum(mu, alpha, smith, tol) {
         Ok(e) => {
             for c in 0..2 {
                 let d = (e.value[c] - r[c]).abs();
                 if d > e.error[c] + re[c] + round(r[c]) || e.error[c] > tol {
                     f.push(format!(
-                        "tol={tol:e} mu={mu:e} alpha={alpha:e} ch{c}: kernel {} (est {:e}) reference {} (est {:e}) diff {d:e}",
+                        "{smith:?} tol={tol:e} mu={mu:e} alpha={alpha:e} ch{c}: kernel {} (est {:e}) reference {} (est {:e}) diff {d:e}",
                         e.value[c], e.error[c], r[c], re[c]
                     ));
                 }

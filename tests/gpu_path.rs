@@ -11,6 +11,16 @@
 //!   device with `float32-filterable`, every table again as f16 on a device without it, and
 //!   an f32 table on that device, which WebGPU must refuse.
 //!
+//! Beyond the defaults, the tables engines ship in other storage and layouts: UNORM8 tables
+//! of 1, 2, 3 (RGBA8, channels `A, B, 0` as the glTF Sample Viewer's `lut_ggx.png`) and 1
+//! channel in 3D (volume and array), and an EEVEE-like table (a √(1 − cos θ) warped,
+//! endpoints, clamped axis, stored roughness-first with `axis_order`) as UNORM8 and f16, all
+//! sampled in both APIs; and UNORM16, which SwiftShader's Chromium cannot sample: WebGL2 needs
+//! `EXT_texture_norm16` (absent here: the case records it and samples only where present),
+//! three.js' `KTX2Loader` refuses `R16G16_UNORM`, and WebGPU refuses `r16unorm` without the
+//! `texture-formats-tier1` feature (absent here) — the engine warnings of src/engine.rs,
+//! checked as they happen.
+//!
 //! Points, per axis: texel centres, points between texels (¼, ½, 0.8 of a cell), the range
 //! ends and beyond them (30 % of the range), and every combination of those across the axes
 //! (so between 3D slices too). Every value read back is compared with the lookup brdfbake's
@@ -34,7 +44,8 @@ mod defaults;
 mod judges;
 
 use brdfbake::encode::shader::lookup_function_name;
-use brdfbake::lut::{Convention, Lut};
+use brdfbake::lut::{Convention, Lut, Warp};
+use brdfbake::table::Storage;
 use serde_json::{json, Value};
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -64,6 +75,8 @@ struct Table {
     scale: f64,
     /// `2d` (1D and 2D tables), `3d` or `array`.
     layout: &'static str,
+    /// The table's storage (UNORM texels read back as code / (2ⁿ − 1)).
+    storage: Storage,
     /// The sidecar's `lookup_error.texel_error` per channel: quadrature estimate plus storage
     /// rounding of the largest value.
     texel_error: Vec<f64>,
@@ -174,7 +187,14 @@ fn corners(c: &[(usize, usize, f64)]) -> Vec<[usize; 3]> {
 /// snippet's blend of two array layers) adds at most (2d + 4)·u·V with V the largest |texel|
 /// of the cell. SwiftShader filters in f32, so this holds there; a GPU with 8-bit weights
 /// differs by up to the sidecar's weight-rounding bound instead (`probe --filter hardware`).
-fn gpu_tolerance(lut: &Lut, x: &[f64]) -> Vec<f64> {
+///
+/// Two terms for the tables beyond the defaults. A warped axis computes p = √(1 − x) (or √x)
+/// before t: 1 − x is exact for x ≥ ½ (Sterbenz) and off by at most u where p ≥ √½, and
+/// Vulkan allows sqrt an error of its 1/inversesqrt (inversesqrt: 2 ULP), so |δp| ≤ 8u
+/// covers it with room: c_t grows by 8/(hi − lo). A UNORM texel is converted to float as
+/// code/(2ⁿ − 1) before filtering: at most 2u·V more (the stored values the lookup takes are
+/// the same code/(2ⁿ − 1), read back in f32).
+fn gpu_tolerance(lut: &Lut, x: &[f64], unorm: bool) -> Vec<f64> {
     let c = cell(lut, x);
     let cs = corners(&c);
     let d = lut.axes.len();
@@ -184,10 +204,15 @@ fn gpu_tolerance(lut: &Lut, x: &[f64]) -> Vec<f64> {
                 .iter()
                 .map(|&i| (lut.texel(i, ch) as f64).abs())
                 .fold(0.0, f64::max);
-            let mut tol = (2 * d + 4) as f64 * U * v;
+            let mut tol = (2 * d + 4 + if unorm { 2 } else { 0 }) as f64 * U * v;
             for (k, a) in lut.axes.iter().enumerate() {
                 let [lo, hi] = a.range;
-                let ct = 3.0 + 2.0 * (lo.abs() + hi.abs()) / (hi - lo);
+                let warp = match a.warp {
+                    Warp::Linear => 0.0,
+                    Warp::SqrtOneMinus | Warp::Sqrt => 8.0 / (hi - lo),
+                    w => panic!("no f32 argument here for the {w:?} warp"),
+                };
+                let ct = 3.0 + 2.0 * (lo.abs() + hi.abs()) / (hi - lo) + warp;
                 let step = cs
                     .iter()
                     .filter(|i| i[k] == c[k].0)
@@ -273,6 +298,9 @@ enum Expect {
     Mismatch(Mutation),
     /// An error from the browser holding this text.
     Error(&'static str),
+    /// Values within the bounds where the browser has what the case needs, else the page's
+    /// "skipped: no NEEDS" (the info the page posts must agree).
+    MatchWhereSupported(&'static str),
 }
 
 /// One run in the browser.
@@ -285,6 +313,8 @@ struct Case {
     snippet: String,
     call: String,
     float32_filterable: bool,
+    /// A WebGL extension the case needs (the page skips the case without it).
+    needs: Option<&'static str>,
     expect: Expect,
 }
 
@@ -437,6 +467,42 @@ fn bake(dir: &Path, out: &str, presets: &[String]) {
     assert!(o.status.success(), "bake: {}", cli::stderr(&o));
 }
 
+/// The tables beyond the defaults (module documentation): UNORM8 in 1, 2, 3 (padded to
+/// RGBA8) channels and in 3D, the EEVEE-like warped, clamped, roughness-first table as UNORM8
+/// and f16, and UNORM16 in 2 and 3 (RGBA16) channels. Row lengths of 33 × 2 and 17 bytes
+/// are no multiple of 4 (the texture uploads must not assume 4-byte row alignment).
+const STORAGE_PRESET: &str = r#"{"schema": "brdfbake.preset/1", "tables": [
+  {"name": "envbrdf8", "kind": "dfg", "layout": "karis", "storage": "unorm8",
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 33}, "roughness": {"size": 17, "quantity": "perceptual"}}},
+  {"name": "e8", "kind": "albedo", "storage": "unorm8",
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 17}, "roughness": {"size": 9, "quantity": "perceptual"}}},
+  {"name": "ggx-rgb8", "kind": "dfg", "layout": "karis", "storage": "unorm8", "channels": ["A", "B", "0"],
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 32}, "roughness": {"size": 32, "quantity": "perceptual"}}},
+  {"name": "g2-8", "kind": "g2", "storage": "unorm8",
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 5}, "cos_theta_l": {"size": 6}, "roughness": {"size": 7, "quantity": "alpha", "range": [0.1, 1]}}},
+  {"name": "g2-8-array", "kind": "g2", "storage": "unorm8", "layout_3d": "array",
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 5}, "cos_theta_l": {"size": 6}, "roughness": {"size": 7, "quantity": "alpha", "range": [0.1, 1]}}},
+  {"name": "eevee8", "kind": "dfg", "layout": "karis", "storage": "unorm8", "axis_order": ["roughness", "cos_theta_v"],
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 16, "warp": "sqrt-one-minus", "convention": "endpoints", "clamp": [1e-4, 0.9999]},
+            "roughness": {"size": 16, "quantity": "perceptual"}}},
+  {"name": "eevee-f16", "kind": "dfg", "layout": "karis", "storage": "f16", "axis_order": ["roughness", "cos_theta_v"],
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 16, "warp": "sqrt-one-minus", "convention": "endpoints", "clamp": [1e-4, 0.9999]},
+            "roughness": {"size": 16, "quantity": "perceptual"}}},
+  {"name": "envbrdf16", "kind": "dfg", "layout": "karis", "storage": "unorm16",
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 32}, "roughness": {"size": 16, "quantity": "perceptual"}}},
+  {"name": "ggx-rgba16", "kind": "dfg", "layout": "karis", "storage": "unorm16", "channels": ["A", "B", "0"],
+   "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+   "axes": {"cos_theta_v": {"size": 32}, "roughness": {"size": 16, "quantity": "perceptual"}}}
+]}"#;
+
 /// Reads a baked table back.
 fn table(dir: &Path, out: &str, preset: &str, name: &str, variant: &str) -> Table {
     let base = dir.join(out).join(preset).join(name);
@@ -451,6 +517,7 @@ fn table(dir: &Path, out: &str, preset: &str, name: &str, variant: &str) -> Tabl
         _ => "2d",
     };
     let channels: Vec<String> = lut.channels.iter().map(|c| c.name.clone()).collect();
+    let storage = pt.spec.storage;
     let texel_error = channels
         .iter()
         .map(|c| side["lookup_error"]["texel_error"][c].as_f64().unwrap())
@@ -463,6 +530,7 @@ fn table(dir: &Path, out: &str, preset: &str, name: &str, variant: &str) -> Tabl
         ktx2,
         scale: rb.scale,
         layout,
+        storage,
         texel_error,
         channels,
         points,
@@ -693,7 +761,7 @@ fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
     for (i, p) in t.points.iter().enumerate() {
         let x = &p[..t.lut.axes.len()];
         let want = t.lut.lookup(x);
-        let tol = gpu_tolerance(&t.lut, x);
+        let tol = gpu_tolerance(&t.lut, x, t.storage.is_unorm());
         for ch in 0..nc {
             let gpu = values[4 * i + ch] as f64;
             let (w, tol) = (want[ch] / t.scale, tol[ch] / t.scale);
@@ -711,7 +779,7 @@ fn compare(t: &Table, c: &Case, values: &[f32]) -> (Vec<String>, usize, f64) {
     }
     for (i, gpu_probe, exact) in &t.probes {
         let x = &t.points[*i][..t.lut.axes.len()];
-        let tol = gpu_tolerance(&t.lut, x);
+        let tol = gpu_tolerance(&t.lut, x, t.storage.is_unorm());
         let interp = interpolation_bound(&t.lut, x);
         let want = t.lut.lookup(x);
         for ch in 0..nc {
@@ -797,6 +865,8 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
         }
         bake(d, &format!("out-{dir}"), &paths);
     }
+    std::fs::write(d.join("storage.json"), STORAGE_PRESET).unwrap();
+    bake(d, "out-storage", &["storage.json".to_string()]);
     let mut tables = Vec::new();
     for (preset, t) in &defaults {
         tables.push(table(d, "out", preset, &t.spec.name, ""));
@@ -804,6 +874,10 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             tables.push(table(d, "out-array", preset, &t.spec.name, " (array)"));
         }
         tables.push(table(d, "out-f16", preset, &t.spec.name, " (f16)"));
+    }
+    let storage = brdfbake::preset::parse(STORAGE_PRESET, "storage", "storage").unwrap();
+    for t in &storage.tables {
+        tables.push(table(d, "out-storage", "storage", &t.spec.name, ""));
     }
     for t in tables.iter_mut() {
         probe_points(d, t);
@@ -828,6 +902,7 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
                ktx2: Option<Vec<u8>>,
                snippet: Option<String>,
                float32_filterable: bool,
+               needs: Option<&'static str>,
                expect: Expect| {
         let t = &tables[ti];
         let id = cases.len();
@@ -861,10 +936,14 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             }),
             call: call(t, name, api),
             float32_filterable,
+            needs,
             expect,
         });
     };
     for (ti, t) in tables.iter().enumerate() {
+        if t.label.starts_with("storage/") {
+            continue; // below
+        }
         let f16 = t.label.ends_with("(f16)");
         if !f16 {
             add(
@@ -875,6 +954,7 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
                 None,
                 None,
                 true,
+                None,
                 Expect::Match,
             );
         }
@@ -887,6 +967,7 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             None,
             None,
             !f16,
+            None,
             Expect::Match,
         );
     }
@@ -896,6 +977,69 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             .position(|t| t.label == label)
             .unwrap_or_else(|| panic!("no table {label}"))
     };
+    // UNORM8 and the warped tables: both APIs, on a device without float32-filterable
+    for name in [
+        "envbrdf8",
+        "e8",
+        "ggx-rgb8",
+        "g2-8",
+        "g2-8-array",
+        "eevee8",
+        "eevee-f16",
+    ] {
+        let ti = find(&format!("storage/{name}"));
+        for api in ["webgl", "webgpu"] {
+            add(
+                &mut files,
+                &mut cases,
+                ti,
+                api,
+                None,
+                None,
+                false,
+                None,
+                Expect::Match,
+            );
+        }
+    }
+    // UNORM16: three.js' KTX2Loader refuses R16G16_UNORM; RGBA16 UNORM samples where WebGL2
+    // has EXT_texture_norm16; WebGPU has no r16unorm without texture-formats-tier1
+    let (rg16, rgba16) = (find("storage/envbrdf16"), find("storage/ggx-rgba16"));
+    add(
+        &mut files,
+        &mut cases,
+        rg16,
+        "webgl",
+        None,
+        None,
+        false,
+        None,
+        Expect::Error("Unsupported vkFormat"),
+    );
+    add(
+        &mut files,
+        &mut cases,
+        rgba16,
+        "webgl",
+        None,
+        None,
+        false,
+        Some("EXT_texture_norm16"),
+        Expect::MatchWhereSupported("EXT_texture_norm16"),
+    );
+    for ti in [rg16, rgba16] {
+        add(
+            &mut files,
+            &mut cases,
+            ti,
+            "webgpu",
+            None,
+            None,
+            true,
+            None,
+            Expect::Error("texture-formats-tier1"),
+        );
+    }
     // an f32 table on a device without float32-filterable: WebGPU refuses it
     let envbrdf = find("karis-envbrdf/envbrdf");
     add(
@@ -906,6 +1050,7 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
         None,
         None,
         false,
+        None,
         Expect::Error("WebGPU validation"),
     );
     // the broken inputs
@@ -939,6 +1084,10 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             "webgl",
             Mutation::ReverseSlices,
         ),
+        ("storage/envbrdf8", "webgl", Mutation::FlipY),
+        ("storage/eevee8", "webgpu", Mutation::FlipY),
+        ("storage/eevee8", "webgl", Mutation::NoEndpointRemap),
+        ("storage/g2-8-array", "webgpu", Mutation::ReverseSlices),
     ];
     for (label, api, m) in broken {
         let ti = find(label);
@@ -958,6 +1107,7 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             ktx2,
             snippet,
             true,
+            None,
             Expect::Mismatch(m),
         );
     }
@@ -971,7 +1121,8 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
                 .flat_map(|p| [p[0] as f32, p[1] as f32, p[2] as f32, 0.0])
                 .collect();
             json!({"id": c.id, "api": c.api, "layout": t.layout, "ktx2": c.url, "snippet": c.snippet,
-                   "call": c.call, "points": pts, "float32_filterable": c.float32_filterable})
+                   "call": c.call, "points": pts, "float32_filterable": c.float32_filterable,
+                   "needs": c.needs})
         })
         .collect();
     files.insert(
@@ -1007,6 +1158,16 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
         "KTX2Loader loads a 2D-array KTX2 as a 2D texture (its first layer): {arr}"
     );
     assert_eq!(info["webgpu"]["float32_filterable"], true, "{info}");
+    // what the UNORM16 cases meet here (docs/engines.md states it)
+    let norm16 = info["webgl"]["texture_norm16"].as_bool().expect("recorded");
+    let tier1 = info["webgpu"]["texture_formats_tier1"]
+        .as_bool()
+        .expect("recorded");
+    eprintln!(
+        "UNORM16: WebGL2 EXT_texture_norm16 {}, WebGPU texture-formats-tier1 {}",
+        if norm16 { "present" } else { "absent" },
+        if tier1 { "present" } else { "absent" }
+    );
 
     let mut failures = Vec::new();
     let mut caught = Vec::new();
@@ -1024,8 +1185,20 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
                 }
             }
             (Expect::Error(text), Some(Ok(_))) => failures.push(format!(
-                "{what}: sampled an f32 texture with filtering on a device without float32-filterable (expected {text:?})"
+                "{what}: sampled, where an error holding {text:?} was expected"
             )),
+            (Expect::MatchWhereSupported(needs), Some(Err(e))) => {
+                let skipped = format!("skipped: no {needs}");
+                if !e.contains(&skipped) || norm16 {
+                    failures.push(format!("{what}: {e}"));
+                }
+            }
+            (Expect::MatchWhereSupported(_), Some(Ok(v))) => {
+                let (f, n, w) = compare(t, c, v);
+                comparisons += n;
+                worst = worst.max(w);
+                failures.extend(f.into_iter().take(5));
+            }
             (_, Some(Err(e))) => failures.push(format!("{what}: {e}")),
             (Expect::Match, Some(Ok(v))) => {
                 let (f, n, w) = compare(t, c, v);

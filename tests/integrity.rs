@@ -712,7 +712,7 @@ fn bad_input_names_the_field_or_flag() {
         ),
         (
             &["verify", "x.png"],
-            &["x.png: not a file verify reads", "preview"],
+            &["x.png: not a png-data file brdfbake wrote", "preview"],
         ),
         (
             &[

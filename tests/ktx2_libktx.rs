@@ -10,7 +10,9 @@
 //!   function from it;
 //! - the key/value data hold exactly `KTXorientation` and `KTXwriter`, NUL-terminated;
 //! - every texel, located through libktx's own image offsets and row pitch, has the bytes of
-//!   the table's value (f32 exactly, f16 as `half::f16::from_f32`, padding alpha 1.0);
+//!   the table's value (f32 exactly, f16 as `half::f16::from_f32`, UNORM8/UNORM16 as the code
+//!   computed here — the nearest integer to value × (2ⁿ − 1), ties to even —, padding alpha
+//!   1.0 or the largest code);
 //! - `ktx2check --warn-as-error` accepts the file.
 
 use brdfbake::encode::ktx2::{Ktx2Encoder, WRITER};
@@ -51,6 +53,42 @@ fn value(t: [usize; 3], c: usize) -> f32 {
     } else {
         (i as f32 * 0.37 + c as f32 * 1.91).sin() * 10f32.powi((i % 7) as i32 - 3)
     }
+}
+
+/// Values in [0, 1] (what a UNORM table holds) that differ in every texel and channel, with
+/// the rounding cases: the ends, an exact tie (0.5 is 127.5 and 32767.5 codes), values within
+/// half a step outside [0, 1] (they round to the end codes).
+fn unorm_value(t: [usize; 3], c: usize) -> f32 {
+    const SPECIAL: [f32; 7] = [0.0, 1.0, 0.5, 1.0 + 1e-6, -1e-6, 1e-8, 0.999_999];
+    let i = (t[2] * 7 + t[1]) * 13 + t[0];
+    if (i + c) % 4 == 0 {
+        SPECIAL[(i / 4 + c) % SPECIAL.len()]
+    } else {
+        0.5 + 0.5 * (i as f32 * 0.37 + c as f32 * 1.91).sin()
+    }
+}
+
+/// The test values for `storage`.
+fn values_for(storage: Storage) -> fn([usize; 3], usize) -> f32 {
+    if storage.is_unorm() {
+        unorm_value
+    } else {
+        value
+    }
+}
+
+/// The UNORM code of `v` computed here, independently of the encoder: the nearest integer to
+/// v·max, a tie going to the even one.
+fn unorm_code(v: f32, max: u32) -> u16 {
+    let x = v as f64 * max as f64;
+    let f = x.floor();
+    let c = if x - f > 0.5 || (x - f == 0.5 && f % 2.0 == 1.0) {
+        f + 1.0
+    } else {
+        f
+    };
+    assert!((0.0..=max as f64).contains(&c), "{v} is not storable");
+    c as u16
 }
 
 fn encoder(storage: Storage, array_3d: bool) -> Ktx2Encoder {
@@ -335,16 +373,23 @@ fn check(lut: &Lut, enc: &Ktx2Encoder, bytes: &[u8]) {
     let nc = lut.channels.len();
     let components = if nc == 3 { 4 } else { nc };
     let component_bytes = match enc.storage {
-        Storage::F16 => 2,
+        Storage::Unorm8 => 1,
+        Storage::F16 | Storage::Unorm16 => 2,
         Storage::F32 => 4,
     };
     let vk_format = match (components, enc.storage) {
-        (1, Storage::F16) => 76,  // VK_FORMAT_R16_SFLOAT
-        (2, Storage::F16) => 83,  // VK_FORMAT_R16G16_SFLOAT
-        (4, Storage::F16) => 97,  // VK_FORMAT_R16G16B16A16_SFLOAT
-        (1, Storage::F32) => 100, // VK_FORMAT_R32_SFLOAT
-        (2, Storage::F32) => 103, // VK_FORMAT_R32G32_SFLOAT
-        (4, Storage::F32) => 109, // VK_FORMAT_R32G32B32A32_SFLOAT
+        (1, Storage::F16) => 76,     // VK_FORMAT_R16_SFLOAT
+        (2, Storage::F16) => 83,     // VK_FORMAT_R16G16_SFLOAT
+        (4, Storage::F16) => 97,     // VK_FORMAT_R16G16B16A16_SFLOAT
+        (1, Storage::F32) => 100,    // VK_FORMAT_R32_SFLOAT
+        (2, Storage::F32) => 103,    // VK_FORMAT_R32G32_SFLOAT
+        (4, Storage::F32) => 109,    // VK_FORMAT_R32G32B32A32_SFLOAT
+        (1, Storage::Unorm8) => 9,   // VK_FORMAT_R8_UNORM
+        (2, Storage::Unorm8) => 16,  // VK_FORMAT_R8G8_UNORM
+        (4, Storage::Unorm8) => 37,  // VK_FORMAT_R8G8B8A8_UNORM
+        (1, Storage::Unorm16) => 70, // VK_FORMAT_R16_UNORM
+        (2, Storage::Unorm16) => 77, // VK_FORMAT_R16G16_UNORM
+        (4, Storage::Unorm16) => 91, // VK_FORMAT_R16G16B16A16_UNORM
         _ => unreachable!(),
     };
     let (nx, ny, nz) = (lut.dim(0), lut.dim(1), lut.dim(2));
@@ -419,6 +464,8 @@ fn check(lut: &Lut, enc: &Ktx2Encoder, bytes: &[u8]) {
                     let want = match enc.storage {
                         Storage::F32 => v.to_le_bytes().to_vec(),
                         Storage::F16 => f16::from_f32(v).to_le_bytes().to_vec(),
+                        Storage::Unorm8 => vec![unorm_code(v, 255) as u8],
+                        Storage::Unorm16 => unorm_code(v, 65535).to_le_bytes().to_vec(),
                     };
                     let at = image + y * pitch + (x * components + c) * component_bytes;
                     assert_eq!(
@@ -563,10 +610,10 @@ fn encode_and_check(lut: &Lut, enc: &Ktx2Encoder) -> Vec<u8> {
 
 #[test]
 fn tables_2d_all_channel_counts_and_storages() {
-    for storage in [Storage::F16, Storage::F32] {
+    for storage in Storage::ALL {
         for nc in 1..=4 {
             // odd, non-square sizes: rows of every length modulo 4 bytes
-            let t = lut(&[5 + nc, 3], nc, value);
+            let t = lut(&[5 + nc, 3], nc, values_for(storage));
             encode_and_check(&t, &encoder(storage, false));
         }
     }
@@ -574,8 +621,8 @@ fn tables_2d_all_channel_counts_and_storages() {
 
 #[test]
 fn table_1d_is_a_2d_texture_of_height_1() {
-    for storage in [Storage::F16, Storage::F32] {
-        let t = lut(&[9], 1, value);
+    for storage in Storage::ALL {
+        let t = lut(&[9], 1, values_for(storage));
         let bytes = encode_and_check(&t, &encoder(storage, false));
         assert_eq!(ktx2::Reader::new(&bytes).unwrap().header().pixel_height, 1);
     }
@@ -583,10 +630,10 @@ fn table_1d_is_a_2d_texture_of_height_1() {
 
 #[test]
 fn table_3d_as_3d_texture_and_as_array() {
-    for storage in [Storage::F16, Storage::F32] {
+    for storage in Storage::ALL {
         for array_3d in [false, true] {
             for nc in [1, 3] {
-                let t = lut(&[4, 3, 5], nc, value);
+                let t = lut(&[4, 3, 5], nc, values_for(storage));
                 encode_and_check(&t, &encoder(storage, array_3d));
             }
         }
@@ -629,9 +676,43 @@ fn f16_overflow_is_an_error() {
     encode_and_check(&ok, &encoder(Storage::F16, false));
 }
 
+/// A UNORM value more than half a step outside [0, 1] is an error naming the table, the
+/// channel, the texel and the value: never clamped. Within half a step it rounds to the end
+/// code (checked by the tables above, whose values include 1 + 1e-6 and -1e-6).
+#[test]
+fn unorm_out_of_range_is_an_error() {
+    for storage in [Storage::Unorm8, Storage::Unorm16] {
+        let max = storage.unorm_max().unwrap() as f32;
+        for bad in [1.0 + 0.51 / max, -0.51 / max, 2.0, -1.0] {
+            let t = lut(&[4, 3], 2, |p, c| {
+                if c == 1 && p == [3, 2, 0] {
+                    bad
+                } else {
+                    0.25
+                }
+            });
+            match encoder(storage, false).encode(&t, &[]) {
+                Err(EncodeError::OutOfUnitRange {
+                    table,
+                    channel,
+                    texel,
+                    value,
+                    ..
+                }) => {
+                    assert_eq!(table, "test-table");
+                    assert_eq!(channel, "A");
+                    assert_eq!(texel, [3, 2]);
+                    assert_eq!(value, bad as f64);
+                }
+                other => panic!("{storage:?} {bad}: expected OutOfUnitRange, got {other:?}"),
+            }
+        }
+    }
+}
+
 #[test]
 fn nan_is_an_error() {
-    for storage in [Storage::F16, Storage::F32] {
+    for storage in Storage::ALL {
         let t = lut(&[4, 3, 2], 3, |p, c| {
             if p == [1, 2, 1] && c == 2 {
                 f32::NAN
@@ -672,8 +753,8 @@ fn shape_errors() {
 
 #[test]
 fn deterministic_and_attributes_are_ignored() {
-    let t = lut(&[6, 4, 3], 3, value);
-    for storage in [Storage::F16, Storage::F32] {
+    for storage in Storage::ALL {
+        let t = lut(&[6, 4, 3], 3, values_for(storage));
         let enc = encoder(storage, false);
         let a = enc.encode(&t, &[]).unwrap();
         let b = enc.encode(&t.clone(), &[]).unwrap();

@@ -316,7 +316,20 @@ const CASES: &[(&str, i32, &[&str], Setup)] = &[
     (
         "inspect: unknown extension",
         INPUT,
-        &["x.png", "accepted: .exr, .ktx2"],
+        &["x.tga", "accepted: .exr, .ktx2, a png-data .png"],
+        |w| {
+            fs::write(w.join("x.tga"), b"\x00\x00\x02").unwrap();
+            os(&["inspect", "x.tga"])
+        },
+    ),
+    (
+        "inspect: a truncated .png",
+        INPUT,
+        &[
+            "x.png",
+            "not a png-data file brdfbake wrote",
+            "no PNG signature",
+        ],
         |w| {
             fs::write(w.join("x.png"), b"\x89PNG").unwrap();
             os(&["inspect", "x.png"])
@@ -626,7 +639,7 @@ fn corrupt_readback_files() {
 /// plus every encoded file (all formats), for tables of each kind and storage.
 #[test]
 fn memory_estimate_bounds_the_files_and_texels() {
-    use brdfbake::preset::{parse, Format};
+    use brdfbake::preset::Format;
     let text = r#"{"schema": "brdfbake.preset/1", "tables": [
       {"name": "dfg", "kind": "dfg", "layout": "filament", "cloth": true,
        "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
@@ -638,11 +651,33 @@ fn memory_estimate_bounds_the_files_and_texels() {
       {"name": "v", "kind": "vgroove",
        "axes": {"n_dot_l": {"size": 8}, "n_dot_h": {"size": 8}, "n_dot_v": {"size": 8}}}
     ]}"#;
-    let p = parse(text, "m.json", "m").unwrap();
-    let all = Format::ALL.to_vec();
-    let est = brdfbake::resources::estimate(std::slice::from_ref(&p), Some(all.as_slice()));
+    // every format a float table takes (png-data holds normalized integers only)
+    let all: Vec<Format> = Format::ALL
+        .into_iter()
+        .filter(|f| *f != Format::PngData)
+        .collect();
+    check_memory_estimate(text, &all);
+    // and every format a UNORM table takes (EXR has no normalized integers)
+    let unorm = r#"{"schema": "brdfbake.preset/1", "tables": [
+      {"name": "dfg", "kind": "dfg", "layout": "filament", "storage": "unorm8",
+       "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+       "axes": {"cos_theta_v": {"size": 16}, "roughness": {"size": 12, "quantity": "perceptual"}}},
+      {"name": "e", "kind": "albedo", "storage": "unorm16",
+       "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+       "axes": {"cos_theta_v": {"size": 33}, "roughness": {"size": 17, "quantity": "perceptual"}}}
+    ]}"#;
+    let all: Vec<Format> = Format::ALL
+        .into_iter()
+        .filter(|f| *f != Format::Exr)
+        .collect();
+    check_memory_estimate(unorm, &all);
+}
+
+fn check_memory_estimate(text: &str, all: &[brdfbake::preset::Format]) {
+    let p = brdfbake::preset::parse(text, "m.json", "m").unwrap();
+    let est = brdfbake::resources::estimate(std::slice::from_ref(&p), Some(all));
     let (baked, files) =
-        brdfbake::pipeline::bake_preset(&p, Path::new("unused"), Some(all.as_slice())).unwrap();
+        brdfbake::pipeline::bake_preset(&p, Path::new("unused"), Some(all)).unwrap();
     let texels: u64 = baked.iter().map(|b| b.lut.data.len() as u64 * 4).sum();
     let encoded: u64 = files.iter().map(|(_, b)| b.len() as u64).sum();
     assert_eq!(

@@ -332,3 +332,121 @@ fn integrals_approach_the_smooth_limit() {
         }
     }
 }
+
+/// Schlick-GGX at α = 0: the image-based form (k = α/2 → 0) is G1 = μ/μ = 1 like Smith's,
+/// the direct-light form (k = (√α + 1)²/8 → 1/8) keeps `G1(μ) = μ/(7μ/8 + 1/8)`, so the
+/// mirror lobe carries G1(μ)²: E = F(μ)·G1², Karis A = (1 − Fc)·G1², B = Fc·G1², and a g2
+/// table holds G1(n·v)·G1(n·l). Written here from Schlick's G1 (not from the library).
+#[test]
+fn schlick_ggx_alpha_zero_rows_hold_the_closed_forms() {
+    let mus = cos_axis("cos_theta_v", 16, [0.0, 1.0]);
+    let mu: Vec<f64> = mus.coords();
+    let g1_direct = |m: f64| m / (m * 7.0 / 8.0 + 1.0 / 8.0);
+    for (masking, g1) in [
+        (
+            Masking::SchlickGgx,
+            Box::new(|_: f64| 1.0) as Box<dyn Fn(f64) -> f64>,
+        ),
+        (Masking::SchlickGgxDirect, Box::new(g1_direct)),
+    ] {
+        let l = bake(&spec(
+            TableKind::Albedo,
+            model(NdfKind::Ggx, masking, Fresnel::Schlick { f0: 0.04 }, 0.0),
+            vec![mus.clone(), alpha_axis(3)],
+        ))
+        .unwrap();
+        let want: Vec<f64> = mu
+            .iter()
+            .map(|&m| (0.04 + 0.96 * schlick_weight(m)) * g1(m) * g1(m))
+            .collect();
+        close(&row(&l, 0, 0), &want, F32, &format!("albedo {masking:?}"));
+        let l = bake(&spec(
+            TableKind::Dfg,
+            model(NdfKind::Ggx, masking, Fresnel::None, 0.0),
+            vec![mus.clone(), alpha_axis(4)],
+        ))
+        .unwrap();
+        let a: Vec<f64> = mu
+            .iter()
+            .map(|&m| (1.0 - schlick_weight(m)) * g1(m) * g1(m))
+            .collect();
+        let b: Vec<f64> = mu
+            .iter()
+            .map(|&m| schlick_weight(m) * g1(m) * g1(m))
+            .collect();
+        close(&row(&l, 0, 0), &a, F32, &format!("Karis A {masking:?}"));
+        close(&row(&l, 0, 1), &b, F32, &format!("Karis B {masking:?}"));
+        // g2 over (n.v, n.l), both from 0 (where G1 = 0)
+        let c5 =
+            |name: &str| Axis::new(name, Quantity::Cosine, 5, [0.0, 1.0], Convention::Endpoints);
+        let l = bake(&spec(
+            TableKind::G2,
+            model(NdfKind::Ggx, masking, Fresnel::None, 0.0),
+            vec![c5("cos_theta_v"), c5("cos_theta_l"), alpha_axis(3)],
+        ))
+        .unwrap();
+        for j in 0..5 {
+            for i in 0..5 {
+                let (v, w) = (i as f64 / 4.0, j as f64 / 4.0);
+                let want = if v > 0.0 && w > 0.0 {
+                    g1(v) * g1(w)
+                } else {
+                    0.0
+                };
+                let got = l.texel([i, j, 0], 0) as f64;
+                assert!(
+                    (got - want).abs() <= F32,
+                    "g2 {masking:?} at ({v}, {w}): {got} against {want}"
+                );
+            }
+        }
+    }
+}
+
+/// Schlick-GGX's integrals approach their α = 0 rows at the rate its k sets: the masking
+/// moves by O(k − k₀), which dominates the lobe's O(α² ln(1/α)): for k = α/2 the difference
+/// is O(α), for k = (√α + 1)²/8 = 1/8 + √α/4 + α/8 it is O(√α). From α = 3e-3 to 3e-4 (one
+/// decade) the measured order log₁₀(d₁/d₂) must be that (1 or 1/2) within 0.1: the next
+/// terms (O(α²ln α) for the first; O(α) against O(√α) for the second, a relative 1/2·√α ≤ 3%
+/// of it) move it by less than 0.03, f32 storage and the 1e-9 tolerance (≤ 1.3e-7 against
+/// differences ≥ 1e-5 where d₁ ≥ 1e-4) by less than 0.01. A wrong α = 0 row (say, the image-based closed form G1 = 1 for the
+/// direct form) would leave d₁/d₂ near 1, order ~0.
+#[test]
+fn schlick_ggx_approaches_its_smooth_limit_at_its_order() {
+    let mus = cos_axis("cos_theta_v", 5, [0.3, 1.0]);
+    for (masking, order) in [(Masking::SchlickGgx, 1.0), (Masking::SchlickGgxDirect, 0.5)] {
+        for kind in [TableKind::Albedo, TableKind::Dfg] {
+            let m = model(NdfKind::Ggx, masking, Fresnel::None, 0.0);
+            let limit = bake(&spec(kind, m.clone(), vec![mus.clone(), alpha_axis(2)])).unwrap();
+            let at = |alpha: f64| {
+                bake(&spec(kind, m.clone(), vec![mus.clone(), at_alpha(alpha)])).unwrap()
+            };
+            let (coarse, fine) = (at(3e-3), at(3e-4));
+            for c in 0..limit.channels.len() {
+                let mut checked = 0;
+                for i in 0..5 {
+                    let l0 = limit.texel([i, 0, 0], c) as f64;
+                    let d1 = (coarse.texel([i, 0, 0], c) as f64 - l0).abs();
+                    let d2 = (fine.texel([i, 0, 0], c) as f64 - l0).abs();
+                    // (where the difference is small — B near normal views, where Fc ~ 0,
+                    // and μ → 1, where G1 = 1 for every k — f32 storage and the 1e-9
+                    // tolerance would decide the ratio, not the rate)
+                    if d1 < 1e-4 {
+                        continue;
+                    }
+                    checked += 1;
+                    let p = (d1 / d2).log10();
+                    assert!(
+                        (p - order).abs() <= 0.1,
+                        "{kind:?} {masking:?} channel {c} at mu {}: differences {d1:e} (alpha 3e-3), {d2:e} (3e-4): order {p}, expected {order}",
+                        mus.coord(i)
+                    );
+                }
+                assert!(
+                    checked >= 1,
+                    "{kind:?} {masking:?} channel {c}: no texel to measure"
+                );
+            }
+        }
+    }
+}

@@ -48,11 +48,14 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
     let mut keys = Vec::new();
     for f in formats {
         if *f == Format::Png {
-            let ch = crate::table::channels(&t.spec);
+            let ch = t.stored_channels();
             for c in &ch {
                 keys.push(format!("preview-{}.png", c.name));
             }
             keys.push(format!("preview-{}-colour.png", ch[0].name));
+        } else if *f == Format::PngData {
+            // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
+            keys.push("png".to_string());
         } else {
             keys.push(f.name().to_string());
         }
@@ -194,6 +197,16 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         None => None,
     };
     let presets = resolve(&a.presets)?;
+    // formats a table's storage cannot be written in (--format exr for a unorm table, …)
+    for p in &presets {
+        for t in &p.tables {
+            t.check_formats(formats.as_deref().unwrap_or(&t.formats))
+                .map_err(|e| {
+                    let flag = if formats.is_some() { "--format: " } else { "" };
+                    CliError::input(format!("{flag}preset {}: {e}", p.name))
+                })?;
+        }
+    }
     // (--check reads what a bake would write, one file at a time: bounded by the same)
     let estimate = crate::resources::estimate(&presets, formats.as_deref());
     crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)?;
@@ -334,6 +347,8 @@ fn progress_bar(a: &BakeArgs, presets: &[Preset]) -> indicatif::ProgressBar {
 
 /// The presets directory searched first for preset names.
 pub const PRESET_DIR: &str = "presets";
+/// The engine presets' folder inside [`PRESET_DIR`]: baked by name, not by a bare `bake`.
+pub const ENGINE_PRESET_DIR: &str = "engines";
 
 fn load(path: &Path) -> Result<Preset, CliError> {
     preset::load(path).map_err(|e| match e {
@@ -378,15 +393,25 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
             load(p)?
         } else {
             let local = Path::new(PRESET_DIR).join(format!("{a}.json"));
+            let engine = Path::new(PRESET_DIR)
+                .join(ENGINE_PRESET_DIR)
+                .join(format!("{a}.json"));
             if local.is_file() {
                 load(&local)?
-            } else if let Some((n, t)) = crate::presets::BUILTIN.iter().find(|(n, _)| n == a) {
+            } else if engine.is_file() {
+                load(&engine)?
+            } else if let Some((n, t)) = crate::presets::BUILTIN
+                .iter()
+                .chain(crate::presets::ENGINES)
+                .find(|(n, _)| n == a)
+            {
                 preset::parse(t, &format!("built-in preset {n}"), n)
                     .map_err(|e| CliError::input(e.to_string()))?
             } else {
                 return Err(CliError::input(format!(
-                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/, not built in (built-in presets: {})",
-                    crate::presets::BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/ or {PRESET_DIR}/{ENGINE_PRESET_DIR}/, not built in (built-in presets: {}; engine presets: {})",
+                    crate::presets::BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+                    crate::presets::ENGINES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
                 )));
             }
         };

@@ -23,8 +23,24 @@ pub struct InspectArgs {
 pub(super) fn file_bytes(path: &Path) -> u64 {
     let size = |p: &Path| std::fs::metadata(p).map_or(0, |m| m.len());
     let side = size(&path.with_extension("json"));
-    let textures = size(&path.with_extension("exr")).max(size(&path.with_extension("ktx2")));
+    let textures = size(&path.with_extension("exr"))
+        .max(size(&path.with_extension("ktx2")))
+        .max(png_decoded_bytes(&path.with_extension("png")));
     size(path).max(textures) + side
+}
+
+/// What a png-data file decodes to at most, from its header (width × height × 4 components
+/// × 2 bytes: its compressed size says little), capped at what readback decodes; 0 for what is
+/// not a PNG.
+fn png_decoded_bytes(p: &Path) -> u64 {
+    let Some(head) = crate::input::read_head(p, 24) else {
+        return 0;
+    };
+    if head.len() < 24 || !head.starts_with(b"\x89PNG\r\n\x1a\n") {
+        return 0;
+    }
+    let be = |o: usize| u32::from_be_bytes([head[o], head[o + 1], head[o + 2], head[o + 3]]) as u64;
+    (be(16) * be(20) * 8).min(crate::readback::MAX_PNG_DECODED_BYTES as u64)
 }
 
 /// The guards of a command that reads a file back: its bytes, the texels decoded as f32
@@ -138,7 +154,7 @@ pub fn run(a: InspectArgs) -> Result<(), CliError> {
             t.spec.kind.description()
         );
         outln!("model:     {}", crate::meta::model_summary(&t.spec));
-        outln!("storage:   {:?}, scale {}", t.spec.storage, t.scale);
+        outln!("storage:   {}, scale {}", t.spec.storage.name(), t.scale);
     }
     if rb.table.is_none() {
         for (k, v) in &rb.file_facts {

@@ -11,6 +11,7 @@ macro_rules! outln {
 }
 
 mod bake;
+mod compare;
 mod completions;
 mod error;
 mod eval;
@@ -56,6 +57,8 @@ pub enum Command {
     Eval(eval::EvalArgs),
     /// Recompute a spread of texels at high accuracy; exit 1 over the tolerance.
     Verify(verify::VerifyArgs),
+    /// Compare an engine's shipped table with exact values at its texels, beside brdfbake's.
+    Compare(compare::CompareArgs),
     /// Write a self-contained HTML report (heatmaps, E curves, Karis' approximation) of presets.
     Report(report::ReportArgs),
     /// Measure the two laws (reciprocity, energy conservation) of models or a MERL file.
@@ -92,6 +95,7 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Command::Eval(a) => eval::run(a),
         Command::Verify(a) => verify::run(a),
         Command::Report(a) => report::run(a),
+        Command::Compare(a) => compare::run(a),
         Command::Laws(a) => laws::run(a),
         Command::Measured(a) => measured::run(a),
         Command::Completions(a) => completions::run(a, <Cli as clap::CommandFactory>::command()),

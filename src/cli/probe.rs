@@ -119,7 +119,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     // beyond the edge texels the GPU reads the edge texel (clamp-to-edge): where the exact
     // value has no meaning at `x` (a cosine above 1), it is given where the GPU reads
     let mut exact_x = x.clone();
-    let (exact, err) = match crate::readback::exact_at(
+    let (computed, computed_err) = match crate::readback::exact_at(
         &table.spec,
         &table.to_kind_order(&x),
         EXACT_TOLERANCE,
@@ -151,6 +151,11 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
             r
         }
     };
+    // the stored channels' exact values (the preset's `channels`: 1 - E, constants, ...)
+    let (exact, err) = (
+        table.stored_values(&computed),
+        table.stored_errors(&computed_err),
+    );
     if deadline.passed() {
         return Err(super::guards::stopped("this probe", &deadline));
     }

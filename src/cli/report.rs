@@ -15,6 +15,11 @@ pub struct ReportArgs {
     /// row order, RG or RGB with cloth), compared with exact values in its own section.
     #[arg(long, value_name = "FILE")]
     pub filament_dfg: Option<PathBuf>,
+    /// An engine's shipped table to compare, as PRESET=FILE (an engine preset and the
+    /// engine's file, as for `brdfbake compare`); repeatable. Each gets a section with its
+    /// errors and a heatmap per channel.
+    #[arg(long, value_name = "PRESET=FILE")]
+    pub compare: Vec<String>,
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
@@ -57,6 +62,32 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
         }
         None => None,
     };
+    // the engine comparisons' presets and files, read before any baking
+    let mut compares = Vec::new();
+    for spec in &a.compare {
+        let (name, file) = spec.split_once('=').ok_or_else(|| {
+            CliError::input(format!(
+                "--compare {spec}: give an engine preset and the engine's file as PRESET=FILE"
+            ))
+        })?;
+        let preset = super::bake::resolve(&[name.to_string()])?.remove(0);
+        let t = match preset.tables.as_slice() {
+            [t] if t.shipped.is_some() => t.clone(),
+            _ => {
+                return Err(CliError::input(format!(
+                    "--compare {spec}: {name} is not an engine preset of one table with a `shipped` description"
+                )))
+            }
+        };
+        let file = PathBuf::from(file);
+        let bytes =
+            crate::input::read_regular(&file, 1400 << 20, "a shipped table file").map_err(|e| {
+                let mut e = CliError::from(e);
+                e.msg = format!("--compare: {}", e.msg);
+                e
+            })?;
+        compares.push((preset, t, file, bytes));
+    }
     let presets = super::bake::resolve(&a.presets)?;
     // the tables as a bake of them in EXR would hold them, and the page: ~the PNG previews
     let est = crate::resources::estimate(
@@ -66,8 +97,13 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
     let compared = shipped
         .as_ref()
         .map_or(0, |(_, d)| filament::exact_values(d));
+    // each --compare bakes its table twice (the preset's and the exact reference, ~2x)
+    let engine_presets: Vec<crate::preset::Preset> =
+        compares.iter().map(|(p, ..)| p.clone()).collect();
+    let engine_time = crate::resources::estimate_time(&engine_presets);
     let time = crate::resources::estimate_time(&presets)
-        + crate::resources::time_of_evaluations(compared as f64 * EVALS_PER_COMPARED_TEXEL);
+        + crate::resources::time_of_evaluations(compared as f64 * EVALS_PER_COMPARED_TEXEL)
+        + crate::resources::time_of_evaluations(3.0 * engine_time.evaluations);
     let deadline = a.guards.admit(&super::guards::Work {
         what: "this report",
         memory: est.peak() + compared as u64 * 48,
@@ -108,7 +144,29 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
         )),
         None => None,
     };
-    let page = html(&tables, comparison.as_ref().map(|(label, c)| (*label, c)));
+    let mut engines = Vec::new();
+    for (preset, t, file, bytes) in &compares {
+        let c = crate::engines::compare_table(
+            &preset.name,
+            t,
+            bytes,
+            &file.display().to_string(),
+            Some(&deadline),
+        )
+        .map_err(|e| match e {
+            crate::engines::CompareError::Input(m) => CliError::input(format!("--compare: {m}")),
+            crate::engines::CompareError::Bake(e) => super::bake_error(&preset.name, e),
+        })?;
+        engines.push(crate::report::engines::EngineComparison {
+            source: preset.source.clone(),
+            comparison: c,
+        });
+    }
+    let page = html(
+        &tables,
+        comparison.as_ref().map(|(label, c)| (*label, c)),
+        &engines,
+    );
     let path = a.out.join("index.html");
     crate::pipeline::write_files(&vec![(path.clone(), page.into_bytes())])?;
     if !a.quiet {

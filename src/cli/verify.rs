@@ -126,7 +126,7 @@ pub fn verify_texels(
                 .map(|(k, a)| a.coord(idx[k]))
                 .collect();
             crate::readback::exact_at(&table.spec, &table.to_kind_order(&x), REFERENCE_TOLERANCE)
-                .map(|r| r.0)
+                .map(|r| table.stored_values(&r.0))
         })
         .collect();
     if stopped.into_inner() {
@@ -191,7 +191,7 @@ pub fn verify_lookups(
                 return Ok(Vec::new());
             }
             crate::readback::exact_at(&table.spec, &table.to_kind_order(x), REFERENCE_TOLERANCE)
-                .map(|r| r.0)
+                .map(|r| table.stored_values(&r.0))
         })
         .collect();
     if stopped.into_inner() {
@@ -222,16 +222,11 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2") {
+    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "png") {
         return Err(CliError::input(format!(
-            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr or .ktx2 texture \
-             brdfbake wrote, or its .json sidecar{}",
+            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2 or png-data .png \
+             texture brdfbake wrote, or its .json sidecar",
             p.display(),
-            if ext == "png" {
-                " (a .png is a preview for people; verify the table's .exr or .ktx2)"
-            } else {
-                ""
-            }
         )));
     }
     let threads = rayon::current_num_threads();
@@ -257,7 +252,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             )));
         }
     }
-    if matches!(ext, "exr" | "ktx2") || schema.as_deref() == Some(crate::meta::SCHEMA) {
+    if matches!(ext, "exr" | "ktx2" | "png") || schema.as_deref() == Some(crate::meta::SCHEMA) {
         // the files' bytes, the texels as f32 and their f64 exact values: ~4 times the files
         let bytes = super::inspect::file_bytes(p);
         let d = a.guards.admit(&super::guards::Work {
@@ -353,20 +348,28 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 };
                 let lut = crate::table::bake_with(&t.spec, &opts)
                     .map_err(|e| super::bake_error(&preset.name, e))?;
+                let label = format!("{}/{}", preset.name, t.spec.name);
+                let lut = t.stored(lut);
+                if t.spec.storage.is_unorm() {
+                    // the texels as stored: value × scale rounded to its code, read back
+                    let mut scaled = lut;
+                    for v in scaled.data.iter_mut() {
+                        *v = (*v as f64 * t.scale) as f32;
+                    }
+                    let stated = crate::meta::lookup_error(t, &scaled);
+                    let stored =
+                        crate::encode::unorm::quantized(&t.spec.name, &scaled, t.spec.storage)
+                            .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
+                    jobs.push((label, t.clone(), stored, t.scale, stated));
+                    continue;
+                }
                 // (baked here, the texels are the values: no scale applied)
                 let values = crate::preset::PresetTable {
                     scale: 1.0,
                     ..t.clone()
                 };
-                let lut = t.stored(lut);
                 let stated = crate::meta::lookup_error(&values, &lut);
-                jobs.push((
-                    format!("{}/{}", preset.name, t.spec.name),
-                    t.clone(),
-                    lut,
-                    1.0,
-                    stated,
-                ));
+                jobs.push((label, t.clone(), lut, 1.0, stated));
             }
         }
     }
@@ -387,13 +390,27 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             .map_err(CliError::input)?
             .ok_or_else(stopped)?;
         let f16 = spec.storage == crate::table::Storage::F16 && *scale > 0.0;
+        // a normalized-integer texel is off by up to half a step (÷ scale) by construction:
+        // the threshold is the tolerance plus that bound (the sidecar's rounding_error_bound)
+        let rounding = spec
+            .storage
+            .quantization_step()
+            .map_or(0.0, |step| step / 2.0 / scale);
+        let threshold = a.tolerance + rounding;
         if !a.json {
             outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
+            if rounding > 0.0 {
+                outln!(
+                    "  note: {} storage rounds each texel by up to half a step, {rounding:.3e}: texels are checked against --tolerance + that = {threshold:.3e}",
+                    spec.storage.name()
+                );
+            }
         }
         let mut chans = Vec::new();
         for (c, (e, idx, stored, exact)) in errs.iter().enumerate() {
             let name = &lut.channels[c].name;
-            let ok = *e <= a.tolerance;
+            // (relative above 1, like the error)
+            let ok = *e <= threshold;
             if !ok {
                 failed.push(format!("{label} {name}"));
             }
@@ -404,7 +421,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     if ok { "ok" } else { "OVER TOLERANCE" }
                 );
             }
-            chans.push(json!({"channel": name, "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "exact": exact, "ok": ok}));
+            chans.push(json!({"channel": name, "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "exact": exact, "ok": ok, "threshold": threshold}));
         }
         if f16 && !a.json {
             outln!("  note: f16 storage rounds by up to 4.9e-4 relative; pass --tolerance 1e-3 to check such files");
@@ -432,7 +449,14 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             }
             lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_ideal_filtering": worst, "within_sidecar_worst_case": within, "sidecar_interpolation_estimate": estimate}));
         }
-        docs.push(json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}}));
+        let mut doc = json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}});
+        if rounding > 0.0 {
+            doc["storage"] = json!(spec.storage.name());
+            doc["storage_rounding_bound"] = json!(rounding);
+            doc["threshold"] = json!(threshold);
+            doc["threshold_meaning"] = json!("--tolerance plus the storage's rounding bound (half a quantization step / scale): a texel is ok within it");
+        }
+        docs.push(doc);
     }
     if a.json {
         let doc = json!({"tolerance": a.tolerance, "reference_tolerance": REFERENCE_TOLERANCE, "ok": failed.is_empty(), "tables": docs});

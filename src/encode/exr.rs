@@ -245,13 +245,20 @@ impl ExrEncoder {
         let (pixel_type, bytes_per_sample) = match self.storage {
             Storage::F32 => (FLOAT, 4),
             Storage::F16 => (HALF, 2),
+            Storage::Unorm8 | Storage::Unorm16 => {
+                return Err(self.shape_error(format!(
+                    "EXR has no normalized-integer sample type, so a {} table has no EXR file \
+                     (formats that store it: ktx2, png-data, h, rs)",
+                    self.storage.name()
+                )))
+            }
         };
         // one pass over all samples first (the per-channel scans below, strided, cost ~1 ms
         // at 512², and only find which channel and texel failed): f16 rounds |v| < 65520 to
         // at most 65504, and |v| ≥ 65520 to infinity
         let all_storable = match self.storage {
-            Storage::F32 => lut.data.iter().all(|v| v.is_finite()),
             Storage::F16 => lut.data.iter().all(|v| v.abs() < 65520.0),
+            _ => lut.data.iter().all(|v| v.is_finite()),
         };
         for (c, channel) in lut.channels.iter().enumerate() {
             let name_error = |reason| EncodeError::ChannelName {
@@ -292,7 +299,7 @@ impl ExrEncoder {
                 });
             }
             match self.storage {
-                Storage::F32 => {}
+                Storage::F32 | Storage::Unorm8 | Storage::Unorm16 => {}
                 Storage::F16 => {
                     if values().any(|v| f16::from_f32(v).is_infinite()) {
                         let largest =
@@ -606,10 +613,10 @@ mod tests {
                         AnyChannel {
                             name: Text::new_or_none(&ch.name).unwrap(),
                             sample_data: match storage {
-                                Storage::F32 => FlatSamples::F32(v),
                                 Storage::F16 => {
                                     FlatSamples::F16(v.iter().map(|&x| f16::from_f32(x)).collect())
                                 }
+                                _ => FlatSamples::F32(v),
                             },
                             quantize_linearly: false,
                             sampling: Vec2(1, 1),

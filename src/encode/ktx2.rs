@@ -1,17 +1,19 @@
-//! KTX 2.0 encoding: an uncompressed, single-level texture in a signed-float Vulkan format,
-//! ready to upload as-is (Vulkan, WebGPU, or OpenGL through libktx).
+//! KTX 2.0 encoding: an uncompressed, single-level texture in a signed-float or unsigned
+//! normalized Vulkan format, ready to upload as-is (Vulkan, WebGPU, or OpenGL through libktx).
 //!
 //! Formats (`vkFormat`), by channel count and [`Storage`]:
 //!
-//! | channels | f16                        | f32                        |
-//! |----------|----------------------------|----------------------------|
-//! | 1        | `R16_SFLOAT`               | `R32_SFLOAT`               |
-//! | 2        | `R16G16_SFLOAT`            | `R32G32_SFLOAT`            |
-//! | 3, 4     | `R16G16B16A16_SFLOAT`      | `R32G32B32A32_SFLOAT`      |
+//! | channels | f16                   | f32                   | unorm8           | unorm16               |
+//! |----------|-----------------------|-----------------------|------------------|-----------------------|
+//! | 1        | `R16_SFLOAT`          | `R32_SFLOAT`          | `R8_UNORM`       | `R16_UNORM`           |
+//! | 2        | `R16G16_SFLOAT`       | `R32G32_SFLOAT`       | `R8G8_UNORM`     | `R16G16_UNORM`        |
+//! | 3, 4     | `R16G16B16A16_SFLOAT` | `R32G32B32A32_SFLOAT` | `R8G8B8A8_UNORM` | `R16G16B16A16_UNORM`  |
 //!
 //! Table channel `c` is texture component `c` (R, G, B, A, in table order). A 3-channel table
-//! is stored as RGBA with a 4th (A) channel of 1.0 in every texel, because three-component
-//! formats are rarely sampleable on GPUs; the JSON sidecar lists the real channels.
+//! is stored as RGBA with a 4th (A) channel of 1.0 (the largest code for UNORM) in every
+//! texel, because three-component formats are rarely sampleable on GPUs; the JSON sidecar
+//! lists the real channels. UNORM components hold the codes of [`super::unorm`]
+//! (`round(v·(2ⁿ − 1))`; a value outside [0, 1] is an error).
 //!
 //! Shape: texture x = table axis 0, y = axis 1, z = axis 2.
 //! - A 1D table becomes a 2D texture of height 1 (not a 1D texture, which many engines and
@@ -28,8 +30,9 @@
 //!
 //! Header layout, per the KTX 2.0 specification: 80-byte header, one level index entry, the
 //! Data Format Descriptor (the Basic DFD the Khronos tools derive from the `vkFormat`: RGBSDA
-//! model, BT.709 primaries, linear transfer, straight alpha, one `FLOAT|SIGNED` sample per
-//! component with sampleLower −1.0 and sampleUpper 1.0), the key/value data (`KTXorientation`
+//! model, BT.709 primaries, linear transfer, straight alpha, one sample per component: for
+//! the float formats `FLOAT|SIGNED` with sampleLower −1.0 and sampleUpper 1.0, for the UNORM
+//! formats no qualifier bits with sampleLower 0 and sampleUpper 2ⁿ − 1), the key/value data (`KTXorientation`
 //! and `KTXwriter`, sorted by key bytes, each entry padded to 4 bytes), no supercompression
 //! global data (offset and length 0), zero padding to `lcm(texel size, 4)`, then the level's
 //! texels: slices (or layers) in z order, rows in y order, texels in x order, channels
@@ -53,7 +56,8 @@ use std::num::NonZeroU8;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Ktx2Encoder {
     /// Component precision: `*_SFLOAT` with 32 or 16 bits (f16: rounded to nearest, ties to
-    /// even; a value that would become infinite is an error).
+    /// even; a value that would become infinite is an error), or `*_UNORM` with 8 or 16 bits
+    /// (codes rounded to nearest; a value outside [0, 1] is an error).
     pub storage: Storage,
     /// The table's name, used in error messages.
     pub table_name: String,
@@ -96,7 +100,7 @@ impl Encoder for Ktx2Encoder {
         let texel_bytes = component_bytes * shape.components;
         let level = self.level_data(lut, &shape, component_bytes)?;
 
-        let dfd = data_format_descriptor(shape.components, component_bytes);
+        let dfd = data_format_descriptor(shape.components, self.storage);
         let kvd = key_value_data(&[("KTXorientation", shape.orientation), ("KTXwriter", WRITER)]);
 
         // Offsets: header, level index (one level), DFD, KVD, no SGD, padding, level data.
@@ -238,9 +242,26 @@ impl Ktx2Encoder {
 
         let texels = lut.data.len() / nc;
         let mut out = Vec::with_capacity(texels * shape.components * component_bytes);
+        if let Some(max) = self.storage.unorm_max() {
+            let codes = super::unorm::codes(&self.table_name, lut, self.storage)?;
+            let mut push = |c: u16| match self.storage {
+                Storage::Unorm8 => out.push(c as u8),
+                _ => out.extend_from_slice(&c.to_le_bytes()),
+            };
+            for texel in codes.chunks_exact(nc) {
+                for &c in texel {
+                    push(c);
+                }
+                // the alpha padding of a 3-channel table: 1.0
+                for _ in nc..shape.components {
+                    push(max as u16);
+                }
+            }
+            return Ok(out);
+        }
         let mut push = |v: f32| match self.storage {
-            Storage::F32 => out.extend_from_slice(&v.to_le_bytes()),
             Storage::F16 => out.extend_from_slice(&f16::from_f32(v).to_le_bytes()),
+            _ => out.extend_from_slice(&v.to_le_bytes()),
         };
         for texel in lut.data.chunks_exact(nc) {
             for &v in texel {
@@ -264,13 +285,30 @@ fn vk_format(components: usize, storage: Storage) -> (Format, usize) {
         (1, Storage::F32) => (Format::R32_SFLOAT, 4),
         (2, Storage::F32) => (Format::R32G32_SFLOAT, 4),
         (_, Storage::F32) => (Format::R32G32B32A32_SFLOAT, 4),
+        (1, Storage::Unorm8) => (Format::R8_UNORM, 1),
+        (2, Storage::Unorm8) => (Format::R8G8_UNORM, 1),
+        (_, Storage::Unorm8) => (Format::R8G8B8A8_UNORM, 1),
+        (1, Storage::Unorm16) => (Format::R16_UNORM, 2),
+        (2, Storage::Unorm16) => (Format::R16G16_UNORM, 2),
+        (_, Storage::Unorm16) => (Format::R16G16B16A16_UNORM, 2),
     }
 }
 
-/// The Data Format Descriptor of an `*_SFLOAT` format with `components` components of
-/// `component_bytes` bytes: `dfdTotalSize` followed by one Basic descriptor block.
-fn data_format_descriptor(components: usize, component_bytes: usize) -> Vec<u8> {
+/// The Data Format Descriptor of the format of `components` components in `storage`
+/// (`*_SFLOAT` or `*_UNORM`): `dfdTotalSize` followed by one Basic descriptor block.
+fn data_format_descriptor(components: usize, storage: Storage) -> Vec<u8> {
+    let component_bytes = storage.bytes();
     let bits = (component_bytes * 8) as u8;
+    // UNORM samples are unsigned integers 0..=2ⁿ − 1 (no qualifiers), the float ones signed
+    // floats whose -1.0 and 1.0 are the sample range (Khronos Data Format 1.3, 5.18-5.20)
+    let (qualifiers, lower, upper) = match storage.unorm_max() {
+        Some(max) => (ChannelTypeQualifiers::empty(), 0, max),
+        None => (
+            ChannelTypeQualifiers::FLOAT | ChannelTypeQualifiers::SIGNED,
+            (-1.0f32).to_bits(),
+            1.0f32.to_bits(),
+        ),
+    };
     let basic = Basic {
         color_model: Some(ColorModel::RGBSDA),
         color_primaries: Some(ColorPrimaries::BT709),
@@ -284,13 +322,12 @@ fn data_format_descriptor(components: usize, component_bytes: usize) -> Vec<u8> 
             .enumerate()
             .map(|(i, &channel_type)| SampleInformation {
                 bit_offset: i as u16 * u16::from(bits),
-                bit_length: NonZeroU8::new(bits).expect("16 or 32 bits"),
+                bit_length: NonZeroU8::new(bits).expect("8, 16 or 32 bits"),
                 channel_type,
-                channel_type_qualifiers: ChannelTypeQualifiers::FLOAT
-                    | ChannelTypeQualifiers::SIGNED,
+                channel_type_qualifiers: qualifiers,
                 sample_positions: [0; 4],
-                lower: (-1.0f32).to_bits(),
-                upper: 1.0f32.to_bits(),
+                lower,
+                upper,
             })
             .collect(),
     };
@@ -338,12 +375,12 @@ mod tests {
     /// the Khronos `vk2dfd` tables), and the type sizes agree.
     #[test]
     fn dfd_matches_the_ktx2_crate() {
-        for storage in [Storage::F16, Storage::F32] {
+        for storage in Storage::ALL {
             for components in [1, 2, 4] {
                 let (format, component_bytes) = vk_format(components, storage);
                 let (basic, type_size) = Basic::from_format(format).unwrap();
                 assert_eq!(type_size as usize, component_bytes, "{format:?}");
-                let ours = data_format_descriptor(components, component_bytes);
+                let ours = data_format_descriptor(components, storage);
                 assert_eq!(&ours[4..], &Block::Basic(basic).to_vec()[..], "{format:?}");
                 assert_eq!(
                     u32::from_le_bytes(ours[..4].try_into().unwrap()) as usize,

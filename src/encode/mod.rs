@@ -5,8 +5,10 @@
 pub mod exr;
 pub mod ktx2;
 pub mod png;
+pub mod png_data;
 pub mod shader;
 pub mod source;
+pub mod unorm;
 
 pub use self::exr::{decode_exr, DecodedExr, ExrEncoder};
 
@@ -33,6 +35,22 @@ pub enum EncodeError {
         channel: String,
         value: f64,
         format: &'static str,
+    },
+    /// A value a normalized-integer storage (UNORM8, UNORM16) cannot hold: its nearest code
+    /// lies outside 0..=2ⁿ − 1 (the value is more than half a step outside [0, 1]).
+    #[error(
+        "table `{table}`, channel `{channel}`: texel {texel:?} holds {value} (stored units, after \
+         the scale), outside the [0, 1] that {storage} stores; {advice}"
+    )]
+    OutOfUnitRange {
+        table: String,
+        channel: String,
+        /// Texel indices, one per axis.
+        texel: Vec<usize>,
+        value: f64,
+        storage: &'static str,
+        /// What to do.
+        advice: String,
     },
     /// The table holds a NaN or an infinity, which no lookup table should contain.
     #[error(

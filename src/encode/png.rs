@@ -390,7 +390,7 @@ fn colour(f: f64) -> [u16; 3] {
 /// A PNG text keyword for an attribute key: standard keywords as they are, others prefixed
 /// with `brdfbake:` unless they contain a colon; 1 to 79 printable Latin-1 characters without
 /// leading, trailing or double spaces.
-fn text_keyword(key: &str) -> Result<String, EncodeError> {
+pub(crate) fn text_keyword(key: &str) -> Result<String, EncodeError> {
     const STANDARD: [&str; 4] = ["Title", "Description", "Software", "Comment"];
     let keyword = if STANDARD.contains(&key) || key.contains(':') {
         key.to_string()

@@ -67,6 +67,28 @@ pub struct ShaderSnippet {
     pub table_name: String,
 }
 
+/// The note on a normalized-integer `storage` attribute (written for unorm8/unorm16 tables
+/// only): the sampler returns the stored values in [0, 1] as they are, so the functions need
+/// nothing more — but the texture must be uploaded in a UNORM format.
+fn storage_note(attributes: &[(String, String)]) -> Option<String> {
+    let (_, v) = attributes.iter().find(|(k, _)| k == "storage")?;
+    let (bits, max, formats) = match v.as_str() {
+        "unorm8" => (8, 255, "R8/RG8/RGBA8 UNORM: r8unorm, rg8unorm, rgba8unorm"),
+        "unorm16" => (
+            16,
+            65535,
+            "R16/RG16/RGBA16 UNORM: r16unorm, rg16unorm, rgba16unorm",
+        ),
+        _ => return None,
+    };
+    Some(format!(
+        "  (storage {v}: the texture holds {bits}-bit normalized integers, code = round(value x {max}), \
+         uploaded as {formats}; the sampler returns code / {max} in [0, 1], the stored value, so no \
+         conversion is needed; each texel is off by at most half a step, 1/{})",
+        2 * max
+    ))
+}
+
 /// The normalized texture coordinates the snippets sample for physical coordinates `x` (one
 /// per axis, in each axis' own quantity), computed in f64: per axis
 /// `t = clamp((x − lo)/(hi − lo), 0, 1)`, then `s = t` (centers) or `s = (0.5 + t·(N − 1))/N`
@@ -220,6 +242,9 @@ impl ShaderSnippet {
                  and is not returned)"
                     .into(),
             );
+        }
+        if let Some(note) = storage_note(attributes) {
+            d.push(note);
         }
         d.push(String::new());
         d.push(

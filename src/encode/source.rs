@@ -2,11 +2,13 @@
 //! engines that embed their lookup tables in the binary instead of loading a texture.
 //!
 //! Both hold the texels exactly as baked, in the table's own order (channels interleaved,
-//! `NAME[((z·HEIGHT + y)·WIDTH + x)·CHANNELS + c]`, x fastest), either as `float`/`f32`
-//! values printed so that they parse back to the same bits, or — with `half` — as the bit
-//! patterns of IEEE 754 binary16 values (`uint16_t`/`u16`) rounded to nearest, ties to even,
-//! from the baked f32 values; a value beyond the f16 range is an
-//! [`EncodeError::Unrepresentable`] error, never an infinity.
+//! `NAME[((z·HEIGHT + y)·WIDTH + x)·CHANNELS + c]`, x fastest), as the table's [`Storage`]
+//! says: `float`/`f32` values printed so that they parse back to the same bits; for f16 the
+//! bit patterns of IEEE 754 binary16 values (`uint16_t`/`u16`) rounded to nearest, ties to
+//! even, from the baked f32 values (a value beyond the f16 range is an
+//! [`EncodeError::Unrepresentable`] error, never an infinity); for unorm8 and unorm16 the
+//! normalized-integer codes (`uint8_t`/`u8`, `uint16_t`/`u16`, value = code/(2ⁿ − 1), see
+//! [`super::unorm`]; a value outside [0, 1] is an error).
 //!
 //! Identifiers come from the table name: every character that is not an ASCII letter, digit
 //! or underscore becomes `_`, `LUT_` is prepended when the result does not start with a
@@ -21,6 +23,7 @@
 
 use super::{EncodeError, Encoder};
 use crate::lut::{Axis, Convention, Lut, Quantity, Warp};
+use crate::table::Storage;
 use half::f16;
 use std::fmt::Write as _;
 
@@ -29,8 +32,9 @@ use std::fmt::Write as _;
 pub struct CHeader {
     /// The table's name: the source of every identifier, and used in error messages.
     pub table_name: String,
-    /// Store IEEE 754 binary16 bit patterns (`uint16_t`) instead of `float`.
-    pub half: bool,
+    /// How the texels are stored: `float`, binary16 bit patterns (`uint16_t`) or UNORM codes
+    /// (`uint8_t`, `uint16_t`).
+    pub storage: Storage,
 }
 
 /// Encodes a table as a Rust source file, usable as a module (`mod dfg;`) or with
@@ -39,8 +43,9 @@ pub struct CHeader {
 pub struct RustSource {
     /// The table's name: the source of every identifier, and used in error messages.
     pub table_name: String,
-    /// Store IEEE 754 binary16 bit patterns (`u16`) instead of `f32`.
-    pub half: bool,
+    /// How the texels are stored: `f32`, binary16 bit patterns (`u16`) or UNORM codes (`u8`,
+    /// `u16`).
+    pub storage: Storage,
 }
 
 /// Values per line in the generated arrays (rounded down to whole texels).
@@ -53,13 +58,13 @@ impl Encoder for CHeader {
 
     fn encode(&self, lut: &Lut, attributes: &[(String, String)]) -> Result<Vec<u8>, EncodeError> {
         check_table(&self.table_name, lut)?;
-        let values = Values::new(&self.table_name, lut, self.half)?;
+        let values = Values::new(&self.table_name, lut, self.storage)?;
         let id = constant_identifier(&self.table_name);
         let guard = format!("BRDFBAKE_{id}_H");
         let size_expr = format!("{id}_WIDTH * {id}_HEIGHT * {id}_DEPTH * {id}_CHANNELS");
 
         let mut out = String::new();
-        let mut doc = description(&self.table_name, &id, lut, self.half, Lang::C);
+        let mut doc = description(&self.table_name, &id, lut, self.storage, Lang::C);
         doc.extend(scale_lines(attributes));
         doc.push(String::new());
         doc.push("Attributes:".into());
@@ -77,7 +82,7 @@ impl Encoder for CHeader {
         }
         out.push_str(" */\n");
         let _ = writeln!(out, "#ifndef {guard}\n#define {guard}\n");
-        if self.half {
+        if self.storage != Storage::F32 {
             out.push_str("#include <stdint.h>\n\n");
         }
         for (suffix, value, what) in size_constants(lut) {
@@ -89,7 +94,11 @@ impl Encoder for CHeader {
             "\n/* Channel names, in storage order. */\nstatic const char *const {id}_CHANNEL_NAMES[{id}_CHANNELS] = {{{}}};\n",
             names.join(", ")
         );
-        let element = if self.half { "uint16_t" } else { "float" };
+        let element = match self.storage {
+            Storage::F32 => "float",
+            Storage::Unorm8 => "uint8_t",
+            Storage::F16 | Storage::Unorm16 => "uint16_t",
+        };
         let _ = writeln!(
             out,
             "/* {id}[((z * {id}_HEIGHT + y) * {id}_WIDTH + x) * {id}_CHANNELS + c] */\nstatic const {element} {id}[{size_expr}] = {{"
@@ -97,6 +106,7 @@ impl Encoder for CHeader {
         values.write_rows(&mut out, lut, "    /* ", " */", &|v| match v {
             Value::F32(v) => c_float(v),
             Value::Half(h) => format!("0x{:04x}", h.to_bits()),
+            Value::Code(c) => c.to_string(),
         });
         out.push_str("};\n\n");
         let _ = writeln!(out, "#endif /* {guard} */");
@@ -111,11 +121,11 @@ impl Encoder for RustSource {
 
     fn encode(&self, lut: &Lut, attributes: &[(String, String)]) -> Result<Vec<u8>, EncodeError> {
         check_table(&self.table_name, lut)?;
-        let values = Values::new(&self.table_name, lut, self.half)?;
+        let values = Values::new(&self.table_name, lut, self.storage)?;
         let id = constant_identifier(&self.table_name);
 
         let mut out = String::new();
-        let mut doc = description(&self.table_name, &id, lut, self.half, Lang::Rust);
+        let mut doc = description(&self.table_name, &id, lut, self.storage, Lang::Rust);
         doc.extend(scale_lines(attributes));
         doc.push(String::new());
         doc.push("Attributes:".into());
@@ -143,13 +153,20 @@ impl Encoder for RustSource {
             "/// Channel names, in storage order.\npub const {id}_CHANNEL_NAMES: [&str; {id}_CHANNELS] = [{}];\n",
             names.join(", ")
         );
-        let (element, what) = if self.half {
-            (
+        let (element, what) = match self.storage {
+            Storage::F16 => (
                 "u16",
                 "IEEE 754 binary16 bit patterns (`half::f16::from_bits`), rounded to nearest even from the baked f32 values",
-            )
-        } else {
-            ("f32", "the baked f32 values, exact")
+            ),
+            Storage::Unorm8 => (
+                "u8",
+                "UNORM8 codes: value = code / 255, code = round(baked value * 255)",
+            ),
+            Storage::Unorm16 => (
+                "u16",
+                "UNORM16 codes: value = code / 65535, code = round(baked value * 65535)",
+            ),
+            Storage::F32 => ("f32", "the baked f32 values, exact"),
         };
         let _ = writeln!(
             out,
@@ -162,6 +179,7 @@ impl Encoder for RustSource {
         values.write_rows(&mut out, lut, "    // ", "", &|v| match v {
             Value::F32(v) => format!("{v:?}"),
             Value::Half(h) => format!("0x{:04x}", h.to_bits()),
+            Value::Code(c) => c.to_string(),
         });
         out.push_str("];\n");
         Ok(out.into_bytes())
@@ -173,15 +191,22 @@ impl Encoder for RustSource {
 enum Value {
     F32(f32),
     Half(f16),
+    /// A UNORM8 or UNORM16 code.
+    Code(u16),
 }
 
 /// The values to store, converted and checked.
 struct Values(Vec<Value>);
 
 impl Values {
-    fn new(table: &str, lut: &Lut, half: bool) -> Result<Values, EncodeError> {
-        if !half {
-            return Ok(Values(lut.data.iter().map(|&v| Value::F32(v)).collect()));
+    fn new(table: &str, lut: &Lut, storage: Storage) -> Result<Values, EncodeError> {
+        match storage {
+            Storage::F32 => return Ok(Values(lut.data.iter().map(|&v| Value::F32(v)).collect())),
+            Storage::Unorm8 | Storage::Unorm16 => {
+                let codes = super::unorm::codes(table, lut, storage)?;
+                return Ok(Values(codes.into_iter().map(Value::Code).collect()));
+            }
+            Storage::F16 => {}
         }
         let nc = lut.channels.len();
         let halves: Vec<f16> = lut.data.iter().map(|&v| f16::from_f32(v)).collect();
@@ -297,25 +322,24 @@ fn size_constants(lut: &Lut) -> Vec<(&'static str, usize, String)> {
 }
 
 /// The description comment of a generated source file (lines without comment markers).
-fn description(table: &str, id: &str, lut: &Lut, half: bool, lang: Lang) -> Vec<String> {
+fn description(table: &str, id: &str, lut: &Lut, storage: Storage, lang: Lang) -> Vec<String> {
     let mut d = vec![
         format!("brdfbake lookup table `{table}`: generated, do not edit."),
         String::new(),
     ];
-    let storage = if half {
-        match lang {
-            Lang::C => "uint16_t IEEE 754 binary16 bit patterns, rounded to nearest even from the baked f32 values",
-            Lang::Rust => "u16 IEEE 754 binary16 bit patterns (half::f16::from_bits), rounded to nearest even from the baked f32 values",
+    let storage = match (storage, lang) {
+        (Storage::F16, Lang::C) => "uint16_t IEEE 754 binary16 bit patterns, rounded to nearest even from the baked f32 values",
+        (Storage::F16, Lang::Rust) => "u16 IEEE 754 binary16 bit patterns (half::f16::from_bits), rounded to nearest even from the baked f32 values",
+        (Storage::F32, Lang::C) => {
+            "float, the baked f32 values exactly (every literal parses back to the same bits)"
         }
-    } else {
-        match lang {
-            Lang::C => {
-                "float, the baked f32 values exactly (every literal parses back to the same bits)"
-            }
-            Lang::Rust => {
-                "f32, the baked f32 values exactly (every literal parses back to the same bits)"
-            }
+        (Storage::F32, Lang::Rust) => {
+            "f32, the baked f32 values exactly (every literal parses back to the same bits)"
         }
+        (Storage::Unorm8, Lang::C) => "uint8_t UNORM8 codes: value = code / 255, code = round(baked f32 value * 255), ties to even (upload as R8/RG8/RGBA8 UNORM: the sampler returns code / 255)",
+        (Storage::Unorm8, Lang::Rust) => "u8 UNORM8 codes: value = code / 255, code = round(baked f32 value * 255), ties to even (upload as R8/RG8/RGBA8 UNORM: the sampler returns code / 255)",
+        (Storage::Unorm16, Lang::C) => "uint16_t UNORM16 codes: value = code / 65535, code = round(baked f32 value * 65535), ties to even (upload as R16/RG16/RGBA16 UNORM: the sampler returns code / 65535)",
+        (Storage::Unorm16, Lang::Rust) => "u16 UNORM16 codes: value = code / 65535, code = round(baked f32 value * 65535), ties to even (upload as R16/RG16/RGBA16 UNORM: the sampler returns code / 65535)",
     };
     d.push(format!(
         "{id}[((z * {id}_HEIGHT + y) * {id}_WIDTH + x) * {id}_CHANNELS + c]: {storage}."
@@ -611,7 +635,7 @@ mod tests {
         )];
         let h = CHeader {
             table_name: "t".into(),
-            half: false,
+            storage: Storage::F32,
         };
         let text = String::from_utf8(h.encode(&lut(&[1.0, 2.0]), &attrs).unwrap()).unwrap();
         let body = &text[..text.find("#ifndef").unwrap()];
@@ -626,7 +650,7 @@ mod tests {
     fn half_overflow_and_non_finite_are_errors() {
         let h = CHeader {
             table_name: "t".into(),
-            half: true,
+            storage: Storage::F16,
         };
         match h.encode(&lut(&[1.0, 7e4, -1e5]), &[]).unwrap_err() {
             EncodeError::Unrepresentable { value, .. } => assert_eq!(value, -1e5),
@@ -634,7 +658,7 @@ mod tests {
         }
         let r = RustSource {
             table_name: "t".into(),
-            half: false,
+            storage: Storage::F32,
         };
         assert!(matches!(
             r.encode(&lut(&[1.0, f32::NAN]), &[]),

@@ -106,11 +106,20 @@ use crate::quadrature::clenshaw_curtis::{rules, MAX_LEVEL};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
-/// Which Smith masking term the GGX kernel uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which masking term the GGX kernel uses: Smith's, or Schlick's approximation of it.
+/// Each is a smooth function of (μv, μl) alone, which is all the reduction needs (the
+/// module doc); the kernel takes it through the line weight `G2/(2μv)` and the scale of its
+/// layer at the horizon (`Texel::g_fac`, `Texel::horizon_scale`).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Smith {
     HeightCorrelated,
     Separable,
+    /// Schlick's separable approximation `G1(μ) = μ/(μ(1 − k) + k)` (Schlick 1994, eq. 19;
+    /// k = α/2 or (√α + 1)²/8 in Karis 2013), any k in (0, 1]: `G2/(2μv) = μl/(2 b(μv) b(μl))`
+    /// with `b(μ) = μ(1 − k) + k`, finite as μv → 0.
+    Schlick {
+        k: f64,
+    },
 }
 
 /// What this kernel does, for the sidecar's `quadrature.method`.
@@ -295,6 +304,8 @@ struct Texel {
     /// `√(μv²(1 − α²) + α²)` (Λ(μv) = (a_v − μv)/(2μv)).
     a_v: f64,
     smith: Smith,
+    /// Schlick's `b(μv) = μv(1 − k) + k` (unused by the Smith forms).
+    b_v: f64,
     /// sin and cos of θv/2, and √(1 − α²): so that a line needs one sin_cos.
     half_v: (f64, f64),
     sqrt_1ma2: f64,
@@ -323,19 +334,40 @@ impl Texel {
             a2,
             a_v: (mu * mu * (1.0 - a2) + a2).sqrt(),
             smith,
+            b_v: match smith {
+                Smith::Schlick { k } => mu * (1.0 - k) + k,
+                _ => 0.0,
+            },
             half_v: (0.5 * theta_v).sin_cos(),
             sqrt_1ma2: (1.0 - a2).sqrt(),
         }
     }
 
-    /// `G2/(2μv)` at μl (both Smith forms; finite as μv → 0).
+    /// `G2/(2μv)` at μl (every form; finite as μv → 0).
     fn g_fac(&self, mu_l: f64) -> f64 {
-        let a_l = (mu_l * mu_l * (1.0 - self.a2) + self.a2).sqrt();
         match self.smith {
             // G2 = 2 μv μl/(μl a_v + μv a_l)
-            Smith::HeightCorrelated => mu_l / (mu_l * self.a_v + self.mu_v * a_l),
+            Smith::HeightCorrelated => {
+                let a_l = (mu_l * mu_l * (1.0 - self.a2) + self.a2).sqrt();
+                mu_l / (mu_l * self.a_v + self.mu_v * a_l)
+            }
             // G1(μ) = 2μ/(μ + a(μ))
-            Smith::Separable => 2.0 * mu_l / ((self.mu_v + self.a_v) * (mu_l + a_l)),
+            Smith::Separable => {
+                let a_l = (mu_l * mu_l * (1.0 - self.a2) + self.a2).sqrt();
+                2.0 * mu_l / ((self.mu_v + self.a_v) * (mu_l + a_l))
+            }
+            // G1(μv) G1(μl)/(2μv) = μl/(2 b(μv) b(μl)), b(μ) = μ(1 − k) + k
+            Smith::Schlick { k } => mu_l / (2.0 * self.b_v * (mu_l * (1.0 - k) + k)),
+        }
+    }
+
+    /// Where the line weight `G2/(2μv)` turns over near the horizon, in μl (see `run`):
+    /// Smith's `λ = μv α/a_v` (≈ min(μv, α)); Schlick's `k/(1 − k)`, where
+    /// `μl(1 − k) = k` (it does not depend on the view).
+    fn horizon_scale(&self, alpha: f64) -> f64 {
+        match self.smith {
+            Smith::HeightCorrelated | Smith::Separable => self.mu_v * alpha / self.a_v,
+            Smith::Schlick { k } => k / (1.0 - k),
         }
     }
 
@@ -959,15 +991,21 @@ fn run(mu: f64, alpha: f64, smith: Smith, tol: f64, with_fc: bool) -> Result<Est
     if !(mu > 0.0 && mu <= 1.0 && alpha > 0.0 && alpha <= 1.0 && tol > 0.0) {
         return Err(0);
     }
+    if let Smith::Schlick { k } = smith {
+        if !(k > 0.0 && k < 1.0) {
+            return Err(0);
+        }
+    }
     let t = Texel::new(mu, alpha, smith);
     let a2 = t.a2;
     let theta_v = t.theta_v;
     // Scales of the integrand's features in θl: the lobe, S − Q ≈ μv²((θl − θv)² + 4α²),
     // and the masking layer at the horizon, where G2/(2μv) = μl/(μl a_v + μv a_l) turns
-    // over at μl ≈ λ = μv α/a_v (≈ min(μv, α)). Panels: [0, θv] and [θv, π/2] warped from
+    // over at μl ≈ λ = μv α/a_v (≈ min(μv, α); Schlick's form at k/(1 − k):
+    // `Texel::horizon_scale`). Panels: [0, θv] and [θv, π/2] warped from
     // θv at w = min(2α, [`WARP_LAMBDA`]·λ); where the horizon is far from θv compared with
     // λ, the upper one ends at θb = π/2 − √(dλ) and [θb, π/2] is warped from the horizon.
-    let lambda = mu * alpha / t.a_v;
+    let lambda = t.horizon_scale(alpha);
     let w = (2.0 * alpha).min(WARP_LAMBDA * lambda);
     let d_h = FRAC_PI_2 - theta_v;
     let split = d_h > 16.0 * lambda;

@@ -6,6 +6,14 @@
 pub mod classic_lobes;
 pub mod dielectric_average;
 pub mod ggx_polar;
+pub mod ltc_check;
+pub mod ltc_fit;
+pub mod ltc_lm;
+pub mod ltc_polygon;
+pub mod ltc_probe;
+pub mod ltc_reference;
+pub mod ltc_rule;
 pub mod micro_normals;
 pub mod sheen_azimuth;
+pub mod sheen_polar;
 pub mod vgroove;

@@ -55,13 +55,15 @@ use crate::quadrature::cc1d::{nested_cc_indexed, FIRST_LEVEL};
 use crate::quadrature::clenshaw_curtis::MAX_LEVEL;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-/// What a table column (one view μ, every roughness) shares: the view cosine and the θh
-/// kernel's node data ([`AzimuthCache`]), filled as its texels ask for it. Each texel's result
+/// What a table column (one view μ, every roughness) shares: the view cosine, the θh
+/// kernel's node data ([`AzimuthCache`]) and the light-cosine kernel's
+/// ([`PolarCache`](super::sheen_polar::PolarCache)), filled as its texels ask for them. Each texel's result
 /// is the same bits with or without it.
 pub struct View {
     /// The view cosine, at most 1.
     mu: f64,
     azimuth: std::cell::RefCell<AzimuthCache>,
+    polar: std::cell::RefCell<super::sheen_polar::PolarCache>,
 }
 
 impl View {
@@ -70,6 +72,7 @@ impl View {
         View {
             mu: mu.min(1.0),
             azimuth: Default::default(),
+            polar: Default::default(),
         }
     }
 
@@ -81,6 +84,12 @@ impl View {
     /// The θh cloth kernel's node data for this view.
     pub fn azimuth(&self) -> &std::cell::RefCell<AzimuthCache> {
         &self.azimuth
+    }
+
+    /// The light-cosine sheen kernel's shared data for this view
+    /// ([`sheen_polar`](super::sheen_polar)).
+    pub fn polar(&self) -> &std::cell::RefCell<super::sheen_polar::PolarCache> {
+        &self.polar
     }
 }
 

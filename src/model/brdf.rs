@@ -116,7 +116,7 @@ mod tests {
         ]
     }
 
-    /// Helmholtz reciprocity f(v, l) = f(l, v) for every NDF × masking × Fresnel, at a
+    /// Helmholtz reciprocity f(v, l) = f(l, v) for every NDF × reciprocal masking × Fresnel, at a
     /// spread of direction pairs (all terms are symmetric in v and l analytically, so the
     /// only difference is rounding: relative 1e-12).
     #[test]
@@ -129,7 +129,8 @@ mod tests {
         ];
         for kind in NdfKind::ALL {
             let ndf = Ndf::new(kind, 0.35).unwrap();
-            for masking in Masking::ALL {
+            // (the softened Conty–Kulla term is not reciprocal, on purpose)
+            for masking in Masking::ALL.into_iter().filter(|m| m.is_reciprocal()) {
                 for fresnel in fresnels {
                     let brdf = Brdf {
                         specular: Some(Specular {

@@ -17,3 +17,4 @@ pub mod energy;
 pub mod fresnel_axis;
 pub use fresnel_axis::FresnelQuantity;
 pub mod btdf;
+pub mod ltc;

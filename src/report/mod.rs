@@ -5,6 +5,7 @@
 
 pub mod classic;
 pub mod convergence;
+pub mod engines;
 pub mod filament;
 mod svg;
 
@@ -12,7 +13,7 @@ use crate::lut::{Lut, Quantity};
 use crate::model::NdfKind;
 use crate::table::{DfgLayout, TableKind, TableSpec};
 use std::fmt::Write;
-pub use svg::{heatmap, line_plot, Series};
+pub use svg::{esc, heatmap, line_plot, Series};
 
 /// One baked table to show.
 pub struct ReportTable {
@@ -30,14 +31,6 @@ pub fn env_brdf_approx(r: f64, n_dot_v: f64) -> (f64, f64) {
     let v: Vec<f64> = (0..4).map(|i| r * c0[i] + c1[i]).collect();
     let a004 = (v[0] * v[0]).min((-9.28 * n_dot_v).exp2()) * v[0] + v[1];
     (-1.04 * a004 + v[2], 1.04 * a004 + v[3])
-}
-
-/// Escapes text for HTML.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// The directional albedo E at (μ, roughness coordinate) a table holds, if it holds one.
@@ -351,8 +344,13 @@ fn filament_section(label: &str, c: &filament::Comparison, out: &mut String) {
     let _ = writeln!(out, "</div></section>");
 }
 
-/// The whole page; `filament`: a shipped Filament DFG table's name and its comparison.
-pub fn html(tables: &[ReportTable], filament: Option<(&str, &filament::Comparison)>) -> String {
+/// The whole page; `filament`: a shipped Filament DFG table's name and its comparison;
+/// `engines`: the comparisons of `--compare`.
+pub fn html(
+    tables: &[ReportTable],
+    filament: Option<(&str, &filament::Comparison)>,
+    engines: &[engines::EngineComparison],
+) -> String {
     let mut out = String::new();
     let _ = write!(
         out,
@@ -372,6 +370,7 @@ pub fn html(tables: &[ReportTable], filament: Option<(&str, &filament::Compariso
     if let Some((label, c)) = filament {
         filament_section(label, c, &mut out);
     }
+    engines::section(engines, &mut out);
     for t in tables {
         table_section(t, &mut out);
     }

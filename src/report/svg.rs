@@ -1,8 +1,15 @@
 //! Inline SVG charts: heatmaps with axes and a colour bar, line plots with a legend.
 
-use super::esc;
 use crate::lut::Lut;
 use std::fmt::Write;
+
+/// Escapes text for HTML.
+pub fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
 
 /// A line of a plot.
 pub struct Series {

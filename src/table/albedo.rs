@@ -2,7 +2,9 @@
 //! BRDF (its own Fresnel, its diffuse lobe), and its cosine-weighted average
 //! E_avg = 2∫₀¹ E(μ) μ dμ (Kulla & Conty 2017, the input of their energy compensation).
 
-use super::methods::{albedo_uses_kernel, charlie_kernels, kernel_smith, vgroove_fast_path};
+use super::methods::{
+    albedo_uses_kernel, charlie_kernels, charlie_polar, kernel_smith, vgroove_fast_path,
+};
 use super::texel::brdfs_per_roughness;
 use super::{TableKind, TableSpec, TexelResult};
 use crate::hemisphere::tensor::integrate_over_l_smooth;
@@ -104,6 +106,14 @@ fn directional_albedo_in(
             match crate::kernels::ggx_polar::ggx_albedo(mu, s.ndf.alpha(), smith, tol) {
                 Ok(e) => return (e.value, e.error, e.evals + spent),
                 Err(n) => spent += n,
+            }
+        } else if let Some(r) = match view {
+            Some(v) => charlie_polar(s, v, tol),
+            None => charlie_polar(s, &View::new(mu), tol),
+        } {
+            match r {
+                Ok(e) => return (e.value, e.error, e.evals),
+                Err(n) => spent = n,
             }
         } else if (s.ndf.kind(), s.masking) == (NdfKind::Charlie, Masking::Ashikhmin) {
             let r = match view {

@@ -13,7 +13,7 @@
 //! measurements). Other models go column by column (`column_fn`), texel by texel; this
 //! module holds the per-texel integrals both use.
 
-use super::methods::{charlie_kernels, kernel_smith};
+use super::methods::{charlie_kernels, charlie_polar, kernel_smith};
 use super::texel::brdfs_per_roughness;
 use super::{DfgLayout, TableSpec, TexelResult};
 use crate::hemisphere::tensor::integrate_over_l_smooth;
@@ -60,9 +60,15 @@ pub fn split_sum_adaptive(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64
 
 /// The sheen albedo ∫ D_Charlie(α)·V_Ashikhmin·(n·l) dω_l at one (μ, α).
 pub fn sheen_albedo(alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
+    sheen_albedo_with(Masking::Ashikhmin, alpha, mu, tol)
+}
+
+/// The sheen albedo ∫ D_Charlie(α)·G·(n·l)/(4 (n·l)(n·v)) dω_l with masking `masking` at one
+/// (μ, α), by the generic path (the tensor rule, then the adaptive integrator).
+pub fn sheen_albedo_with(masking: Masking, alpha: f64, mu: f64, tol: f64) -> (f64, f64, u64) {
     let sheen = Specular {
         ndf: Ndf::new(NdfKind::Charlie, alpha).expect("alpha validated > 0"),
-        masking: Masking::Ashikhmin,
+        masking,
         fresnel: Fresnel::None,
     };
     let e = integrate_over_l_smooth(mu, Some(&sheen.ndf), tol, |n| [sheen.cosine_weighted(n)]);
@@ -95,31 +101,48 @@ pub fn split_sum_kernels(spec: &Specular, mu: f64, tol: f64) -> ([f64; 2], [f64;
     (v, e, n + spent)
 }
 
-/// What every texel of a dfg table needs.
+/// What every texel of a dfg table needs (and of a Charlie albedo table baked by lines,
+/// whose one channel is the dfg table's cloth channel with the table's own masking).
 pub(super) struct Ctx {
     model: super::ModelSpec,
     brdfs: Vec<crate::model::Brdf>,
     pub(super) axes: Vec<crate::lut::Axis>,
     pub(super) tol: f64,
     layout: DfgLayout,
+    /// Whether the table has the split-sum pair (dfg tables; not the albedo ones).
+    pub(super) pair: bool,
     pub(super) cloth: bool,
+    /// The cloth channel's masking: Ashikhmin's for a dfg table, the model's for a Charlie
+    /// albedo table.
+    pub(super) sheen: Masking,
 }
 
 impl Ctx {
     pub(super) fn new(spec: &TableSpec) -> Ctx {
+        let pair = spec.kind == super::TableKind::Dfg;
         Ctx {
             model: spec.model.clone(),
             brdfs: brdfs_per_roughness(spec),
             axes: spec.axes.clone(),
             tol: spec.tolerance,
-            layout: spec.dfg_layout.expect("validated"),
-            cloth: spec.cloth,
+            layout: spec.dfg_layout.unwrap_or(DfgLayout::Karis),
+            pair,
+            cloth: spec.cloth || !pair,
+            sheen: if pair {
+                Masking::Ashikhmin
+            } else {
+                spec.model.masking
+            },
         }
     }
 
     /// Texel (i0, j) with the view data of column i0.
     fn texel(&self, j: usize, view: &View) -> TexelResult {
-        let mut r = self.pair(j, view, self.tol);
+        let mut r = if self.pair {
+            self.pair(j, view, self.tol)
+        } else {
+            TexelResult::exact(Vec::new())
+        };
         if self.layout == DfgLayout::KarisF82 {
             let s = self.brdfs[j]
                 .specular
@@ -132,7 +155,7 @@ impl Ctx {
         }
         if self.cloth {
             let alpha = self.axes[1].alpha(j).expect("roughness axis");
-            let (v, e, n) = cloth_texel(view, alpha, self.tol);
+            let (v, e, n) = cloth_texel(self.sheen, view, alpha, self.tol);
             r.value.push(v);
             r.error.push(e);
             r.evals += n;
@@ -203,15 +226,26 @@ pub(super) fn f82_channel(s: &Specular, mu: f64, tol: f64) -> (f64, f64, u64) {
     (e.value[0], e.error[0], e.evals)
 }
 
-/// The cloth channel at one texel: the cloth kernels
-/// ([`charlie_kernels`](super::albedo::charlie_kernels), with the view's shared node data),
-/// then the generic path; the evaluations of abandoned attempts are counted. A pure function
-/// of (μ, α, tol): the same bits whether the texel is computed alone or in its column.
-pub(super) fn cloth_texel(view: &View, alpha: f64, tol: f64) -> (f64, f64, u64) {
-    match charlie_kernels(view, alpha, tol) {
+/// The cloth channel at one texel, Charlie with masking `masking`: for Ashikhmin's, the
+/// cloth kernels ([`charlie_kernels`], with the view's shared node data), for the others the
+/// light-cosine kernel ([`charlie_polar`]), then the generic path; the evaluations of
+/// abandoned attempts are counted. A pure function of (μ, α, tol): the same bits whether
+/// the texel is computed alone or in its column.
+pub(super) fn cloth_texel(masking: Masking, view: &View, alpha: f64, tol: f64) -> (f64, f64, u64) {
+    let r = if masking == Masking::Ashikhmin {
+        charlie_kernels(view, alpha, tol)
+    } else {
+        let s = Specular {
+            ndf: Ndf::new(NdfKind::Charlie, alpha).expect("alpha validated > 0"),
+            masking,
+            fresnel: Fresnel::None,
+        };
+        charlie_polar(&s, view, tol).unwrap_or(Err(0))
+    };
+    match r {
         Ok(e) => (e.value[0], e.error[0], e.evals),
         Err(n) => {
-            let (v, e, m) = sheen_albedo(alpha, view.mu(), tol);
+            let (v, e, m) = sheen_albedo_with(masking, alpha, view.mu(), tol);
             (v, e, m + n)
         }
     }

@@ -47,6 +47,7 @@
 //! without changing a bit.
 
 use super::dfg::{as_sample, cloth_sample, cloth_texel, Ctx, Dense};
+use super::methods::GRID_MIN_COLUMNS;
 use super::TableSpec;
 use crate::kernels::sheen_azimuth::View;
 use crate::lut::Axis;
@@ -158,12 +159,6 @@ const CLOTH_NARROW_BELOW_ALPHA: f64 = 1.0 / 16.0;
 /// lobes' albedo is ~0 but for a layer near grazing that columns resolve badly); their
 /// 24 rows at 128² cost 14.7 M on a grid against 1.9 M by rows.
 const NARROW_GRID_MIN_ALPHA: f64 = 1.0 / 1024.0;
-
-/// Grids only pay on tables of at least this many texel columns: a grid's x-line needs
-/// ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids against 10.0 M
-/// without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at 32²). Below it
-/// the pair goes by rows and the wide cloth lobes by columns alone.
-pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
 /// The variable in which a line along the roughness axis is interpolated.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -376,7 +371,9 @@ impl Ctx {
     ) -> LineValues {
         let view = View::new(mu);
         let at = |alpha: f64, t: f64| {
-            unless_stopped(stop, 1, || cloth_sample(cloth_texel(&view, alpha, t)))
+            unless_stopped(stop, 1, || {
+                cloth_sample(cloth_texel(self.sheen, &view, alpha, t))
+            })
         };
         interp1d::line_with_node_tol(
             interp1d::MIN_DEG,
@@ -469,15 +466,16 @@ fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: St
     let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
     let at = |mu: f64, t: f64| {
         unless_stopped(stop, 1, || {
-            cloth_sample(cloth_texel(&View::new(mu), alpha, t))
+            cloth_sample(cloth_texel(ctx.sheen, &View::new(mu), alpha, t))
         })
     };
     let direct_below = strip_end.is_none();
     let k0 = strip_end.unwrap_or_else(|| xs.partition_point(|&x| x < CLOTH_GRAZING_BREAK));
+    let breaks = cloth_breaks(ctx, &[]);
     let mut out = interp1d::line_with_node_tol(
         interp1d::MIN_DEG,
         &xs[k0..],
-        &[],
+        &breaks,
         1,
         ctx.tol,
         ctx.tol * NODE_TOL_FRACTION,
@@ -499,6 +497,27 @@ fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: St
     out.value = value;
     out.error = error;
     out
+}
+
+/// Where Conty–Kulla's fitted Λ(μ) changes branch, in x = √μ: at μ = 1/2 the two branches
+/// meet with equal values and slopes but not curvatures (`Λ = exp(L(μ))` below,
+/// `exp(2L(1/2) − L(1 − μ))` above), so its albedo is only C¹ in μv there, and one
+/// interpolant across it converges slowly (measured: 1024² albedo table, 553 columns on the
+/// wide lobes' grid without this break).
+const CONTY_KULLA_BREAK: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// The cloth lines' breaks in x = √μ: `base`, and [`CONTY_KULLA_BREAK`] where the cloth
+/// channel's masking is Conty–Kulla's.
+fn cloth_breaks(ctx: &Ctx, base: &[f64]) -> Vec<f64> {
+    let mut b = base.to_vec();
+    if matches!(
+        ctx.sheen,
+        crate::model::Masking::ContyKulla | crate::model::Masking::ContyKullaSoftened
+    ) {
+        b.push(CONTY_KULLA_BREAK);
+        b.sort_by(f64::total_cmp);
+    }
+    b
 }
 
 /// One job of [`bake`] and what it returns.
@@ -585,14 +604,19 @@ fn bake_with(
     detail: bool,
     limit: f64,
 ) -> Option<(Dense, Option<Detail>)> {
-    if !super::methods::split_sum_by_lines(spec) {
+    if !(super::methods::split_sum_by_lines(spec) || super::methods::albedo_by_lines(spec)) {
         return None;
     }
     let ctx = Ctx::new(spec);
     let (ax, ay) = (&ctx.axes[0], &ctx.axes[1]);
     let (nx, ny) = (ax.size, ay.size);
     let tol = ctx.tol;
-    let p = plan(nx, ay, ctx.cloth);
+    let mut p = plan(nx, ay, ctx.cloth);
+    if !ctx.pair {
+        // (a Charlie albedo table: the cloth channel alone)
+        p.pair_grids.clear();
+        p.pair_rows.clear();
+    }
     let xs: Vec<f64> = (0..nx).map(|i| ax.coord(i).sqrt()).collect();
     let k0 = if p.strip.is_some() {
         xs.partition_point(|&x| x < STRIP_BREAK)
@@ -637,6 +661,9 @@ fn bake_with(
     // the gaps, the split sum's second band started when its widest band ended and ran ~50 ms
     // on its own at the end. Costs of one core at 512² (2026-11-30): the pair's widest band
     // 62 ms, its second band 37, its rows 50, the cloth grids 12–17, the cloth rows 5.
+    let cloth_grid_breaks = cloth_breaks(&ctx, &[GRAZING_BREAK]);
+    let narrow_grid_breaks = cloth_breaks(&ctx, &[]);
+    let (cloth_grid_breaks, narrow_grid_breaks) = (&cloth_grid_breaks, &narrow_grid_breaks);
     let mut jobs: Vec<Job> = Vec::new();
     // (the jobs own their references)
     let (xs, ctx) = (&xs[..], &ctx);
@@ -660,7 +687,7 @@ fn bake_with(
                 ax,
                 xs,
                 0,
-                &[GRAZING_BREAK],
+                cloth_grid_breaks,
                 rl.ys.len(),
                 tol,
                 &|mu, t| ctx.cloth_column(rl, mu, t, COLUMN_NODE_TOL_FRACTION, stop),
@@ -669,9 +696,15 @@ fn bake_with(
     }
     if let Some(rl) = &p.narrow_grid {
         jobs.push(Box::new(move || {
-            Done::Grid(grid(ax, xs, k0, &[], rl.ys.len(), tol, &|mu, t| {
-                ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop)
-            }))
+            Done::Grid(grid(
+                ax,
+                xs,
+                k0,
+                narrow_grid_breaks,
+                rl.ys.len(),
+                tol,
+                &|mu, t| ctx.cloth_column(rl, mu, t, NODE_TOL_FRACTION, stop),
+            ))
         }));
     }
     jobs.push(Box::new(|| Done::Rows(cloth_rows())));
@@ -698,7 +731,9 @@ fn bake_with(
     else {
         unreachable!("jobs come back in order")
     };
-    let nch = if ctx.cloth { 3 } else { 2 };
+    // channels: the pair's two (dfg tables), then the cloth channel
+    let pair_nch = if ctx.pair { 2 } else { 0 };
+    let nch = pair_nch + usize::from(ctx.cloth);
     let mut evals = pair_grids.iter().map(|l| l.evals).sum::<u64>();
     for l in pair_rows.iter().chain(&cloth_rows).flatten() {
         evals += l.evals;
@@ -787,11 +822,13 @@ fn bake_with(
                 max_error[c] = max_error[c].max(e);
                 misses.check(limit, j * nx + i, c, e);
             };
-            let pair = pair_src(j);
-            for i in 0..nx {
-                let at = pair.at(i);
-                for c in 0..2 {
-                    put(i, c, pair.line.value[at + c], pair.line.error[at + c]);
+            if ctx.pair {
+                let pair = pair_src(j);
+                for i in 0..nx {
+                    let at = pair.at(i);
+                    for c in 0..2 {
+                        put(i, c, pair.line.value[at + c], pair.line.error[at + c]);
+                    }
                 }
             }
             if ctx.cloth {
@@ -806,7 +843,7 @@ fn bake_with(
                             Source::Strided(s) => (s.line, s.at(i)),
                         }
                     };
-                    put(i, 2, l.value[at], l.error[at]);
+                    put(i, pair_nch, l.value[at], l.error[at]);
                 }
             }
             (max_error, non_finite, dv, de, misses)
@@ -932,7 +969,12 @@ mod tests {
     fn texel_at(ctx: &Ctx, i: usize, j: usize, tol: f64) -> TexelResult {
         let view = View::new(ctx.axes[0].coord(i));
         let mut r = ctx.pair(j, &view, tol);
-        let (v, e, n) = cloth_texel(&view, ctx.axes[1].alpha(j).unwrap(), tol);
+        let (v, e, n) = cloth_texel(
+            Masking::Ashikhmin,
+            &view,
+            ctx.axes[1].alpha(j).unwrap(),
+            tol,
+        );
         r.value.push(v);
         r.error.push(e);
         r.evals += n;
@@ -1025,7 +1067,7 @@ mod tests {
             let col = ctx.cloth_column(&rl, mu, tol, NODE_TOL_FRACTION, &|| false);
             assert!(col.nodes + col.direct < 80, "μ = {mu}: not interpolated");
             for (k, &alpha) in rl.alphas.iter().enumerate() {
-                let (r, re, _) = cloth_texel(&View::new(mu), alpha, tol * 1e-2);
+                let (r, re, _) = cloth_texel(Masking::Ashikhmin, &View::new(mu), alpha, tol * 1e-2);
                 let (v, e) = (col.value[k], col.error[k]);
                 assert!(
                     (v - r).abs() <= e + re,

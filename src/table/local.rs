@@ -31,9 +31,12 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
         TableKind::G2 => {
             let ndf = &ndfs[idx[2]];
             let (mv, ml) = (axes[0].coord(idx[0]), axes[1].coord(idx[1]));
-            // G2 of Smith and Ashikhmin depends on n.v and n.l only; h is not used
+            // every G2 a g2 table accepts depends on n.v and n.l only; h is not used
             let mut r = TexelResult::exact(vec![masking.g(ndf, mv, ml, 1.0, 1.0)]);
-            r.error[0] = 2.0 * ndf.g1_error_estimate();
+            // (only Smith's terms use the NDF's G1, numeric for some NDFs)
+            if masking.is_smith() {
+                r.error[0] = 2.0 * ndf.g1_error_estimate();
+            }
             r
         }
         TableKind::Vgroove => {

@@ -41,18 +41,29 @@ pub(crate) fn kernel_smith(s: &Specular) -> Option<Smith> {
     match (s.ndf.kind(), s.masking) {
         (NdfKind::Ggx, Masking::SmithHeightCorrelated) => Some(Smith::HeightCorrelated),
         (NdfKind::Ggx, Masking::SmithSeparable) => Some(Smith::Separable),
+        (NdfKind::Ggx, m @ (Masking::SchlickGgx | Masking::SchlickGgxDirect)) => {
+            m.schlick(s.ndf.alpha()).map(|g| Smith::Schlick { k: g.k })
+        }
         _ => None,
     }
 }
 
 /// Whether a dfg table with this model uses the specialised kernels of
-/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels.
+/// [`crate::kernels::ggx_polar`] (first) for its split-sum channels: GGX with Smith's
+/// masking or Schlick's approximation of it (smooth functions of (n·v, n·l) alone).
 pub fn split_sum_uses_kernel(ndf: Option<NdfKind>, masking: Masking) -> bool {
-    ndf == Some(NdfKind::Ggx)
-        && matches!(
-            masking,
-            Masking::SmithHeightCorrelated | Masking::SmithSeparable
-        )
+    ndf == Some(NdfKind::Ggx) && kernel_masking(masking)
+}
+
+/// The masking terms the GGX polar kernel takes.
+fn kernel_masking(masking: Masking) -> bool {
+    matches!(
+        masking,
+        Masking::SmithHeightCorrelated
+            | Masking::SmithSeparable
+            | Masking::SchlickGgx
+            | Masking::SchlickGgxDirect
+    )
 }
 
 /// The cloth albedo `∫ D_Charlie V_Ashikhmin (n·l) dω_l` (F = 1) at view `view.mu()` by the
@@ -73,6 +84,44 @@ pub(crate) fn charlie_kernels(
         tol,
         &mut view.azimuth().borrow_mut(),
     )
+}
+
+/// The Charlie sheen albedo with a masking term of the two cosines other than Ashikhmin's
+/// (Conty–Kulla's, plain or softened) by the light-cosine kernel
+/// ([`crate::kernels::sheen_polar`]); `None` for lobes it does not take, `Err(evaluations
+/// spent)` where it does not reach `tol` (the caller falls back to the generic path).
+pub(crate) fn charlie_polar(
+    s: &Specular,
+    view: &View,
+    tol: f64,
+) -> Option<Result<crate::quadrature::Estimate<1>, u64>> {
+    let mu = view.mu();
+    use crate::model::masking::ContyKullaLambda;
+    if s.ndf.kind() != NdfKind::Charlie {
+        return None;
+    }
+    let softened = match s.masking {
+        Masking::ContyKulla => false,
+        Masking::ContyKullaSoftened => true,
+        _ => return None,
+    };
+    let cl = ContyKullaLambda::new(s.ndf.alpha());
+    let lv = cl.lambda(mu);
+    let g = |mu_l: f64| {
+        let ll = if softened {
+            cl.softened(mu_l)
+        } else {
+            cl.lambda(mu_l)
+        };
+        1.0 / (1.0 + lv + ll)
+    };
+    Some(crate::kernels::sheen_polar::charlie_albedo_polar_shared(
+        mu,
+        s.ndf.alpha(),
+        &g,
+        tol,
+        &mut view.polar().borrow_mut(),
+    ))
 }
 
 /// Whether the V-groove fast path ([`integrate_over_l_kinked`]) may take this lobe, and the
@@ -104,14 +153,21 @@ pub fn albedo_uses_kernel(model: &super::ModelSpec) -> bool {
     use crate::model::NdfKind;
     model.diffuse_weight == 0.0
         && model.fresnel == crate::model::Fresnel::None
-        && matches!(
-            (model.ndf, model.masking),
-            (
-                Some(NdfKind::Ggx),
-                Masking::SmithHeightCorrelated | Masking::SmithSeparable
-            ) | (Some(NdfKind::Charlie), Masking::Ashikhmin)
-        )
+        && match model.ndf {
+            Some(NdfKind::Ggx) => kernel_masking(model.masking),
+            Some(NdfKind::Charlie) => matches!(
+                model.masking,
+                Masking::Ashikhmin | Masking::ContyKulla | Masking::ContyKullaSoftened
+            ),
+            _ => false,
+        }
 }
+
+/// `dfg_lines.rs` lays grids only on tables of at least this many texel columns: a grid's
+/// x-line needs ~36–68 columns (measured on filament-dfg: 9.9 M evaluations with grids
+/// against 10.0 M without at 96², 11.8 M against 14.6 M at 128², 8.1 M against 3.0 M at
+/// 32²). Below it the pair goes by rows and the wide cloth lobes by columns alone.
+pub(crate) const GRID_MIN_COLUMNS: usize = 128;
 
 /// Whether `dfg_lines.rs` bakes this table by lines: 2D dfg tables whose split-sum channels go through the
 /// GGX kernels (analytic in √μ along a row, in ln α along a column), with view cosines
@@ -122,11 +178,31 @@ pub fn split_sum_by_lines(spec: &TableSpec) -> bool {
         [x, y] => [x, y],
         _ => return false,
     };
-    // (karis-f82's third channel goes texel by texel: column by column)
-    spec.dfg_layout != Some(super::DfgLayout::KarisF82)
+    spec.kind == TableKind::Dfg
+        // (karis-f82's third channel goes texel by texel: column by column)
+        && spec.dfg_layout != Some(super::DfgLayout::KarisF82)
         && split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
         && spec.model.diffuse_weight == 0.0
         && x.size >= 2
+        && x.coord(0) > 0.0
+        && (1..x.size).all(|i| x.coord(i) > x.coord(i - 1))
+}
+
+/// Whether `dfg_lines.rs` bakes this `albedo` table by lines: the Charlie sheen albedo
+/// (any of its maskings, F = 1, no diffuse lobe) on tables of at least
+/// `GRID_MIN_COLUMNS` (128) columns whose view cosines
+/// increase and are positive — the plan of the `dfg` table's cloth channel, its kernel the
+/// model's (`dfg::cloth_texel`). Smaller tables go column by column,
+/// texel by texel.
+pub fn albedo_by_lines(spec: &TableSpec) -> bool {
+    let [x, _] = match spec.axes.as_slice() {
+        [x, y] => [x, y],
+        _ => return false,
+    };
+    spec.kind == TableKind::Albedo
+        && spec.model.ndf == Some(NdfKind::Charlie)
+        && albedo_uses_kernel(&spec.model)
+        && x.size >= GRID_MIN_COLUMNS
         && x.coord(0) > 0.0
         && (1..x.size).all(|i| x.coord(i) > x.coord(i - 1))
 }
@@ -218,7 +294,13 @@ pub fn describe(spec: &TableSpec) -> String {
         spec.kind,
         TableKind::Albedo | TableKind::AlbedoAvg | TableKind::KullaConty
     ) && spec.model.ndf == Some(crate::model::NdfKind::Charlie);
-    let method = if kernel && charlie_albedo {
+    let method = if kernel && charlie_albedo && spec.model.masking != Masking::Ashikhmin {
+        // Charlie + Conty-Kulla, F = 1: the light-cosine kernel
+        format!(
+            "{}; where that fails, the generic path: {method}",
+            crate::kernels::sheen_polar::METHOD,
+        )
+    } else if kernel && charlie_albedo {
         // Charlie + Ashikhmin, F = 1: the cloth kernels of the filament-dfg cloth channel
         // (src/table/albedo.rs `charlie_kernels`)
         format!(
@@ -245,6 +327,13 @@ pub fn describe(spec: &TableSpec) -> String {
         format!(
             "Split-sum channels by lines (src/table/dfg_lines.rs): on tables of at least 128 columns, the rows with alpha >= 1/64, and those of [1/256, 1/64) where that band holds at least 24 rows, on grids: interpolated across the table in x = sqrt(mu) from whole columns (at tolerance/8), each column interpolated along the roughness axis in y = ln(alpha) (nodes at tolerance/4 of the column's); every other row along the row in x = sqrt(mu), cut at mu = 0.073 too. Lines across the table are first cut at mu = 0.01 (texels closer to grazing: usually computed directly, a column at a time on grids). Interpolation: {} Each quadrature: {method}",
             crate::quadrature::interp1d::METHOD
+        )
+    } else {
+        method
+    };
+    let method = if albedo_by_lines(spec) {
+        format!(
+            "By lines (src/table/dfg_lines.rs), the plan of the dfg table's cloth channel: wide lobes (1/16 <= alpha <= 1) on a grid (columns in y = sqrt(alpha), nodes at tolerance/4 of the column's), narrow lobes along each row in x = sqrt(mu) (nodes at tolerance/8), texel by texel near grazing views; each node or direct texel: {method}"
         )
     } else {
         method

@@ -200,14 +200,15 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     // data is built once (dfg::column_fn); one block in texel order otherwise.
     // (GGX dfg tables go by lines instead, interpolated along rows and columns: dfg_lines, whose
     // dense result needs no per-texel allocation)
-    let dense = if spec.kind == TableKind::Dfg {
+    // (and large Charlie albedo tables: methods::albedo_by_lines)
+    let dense = if matches!(spec.kind, TableKind::Dfg | TableKind::Albedo) {
         dfg_lines::bake(spec, &out_of_time, limit)
     } else {
         None
     };
-    // (cloth albedo tables too: albedo::by_column; and dielectric-albedo-avg, whose column
-    // is one roughness with every eta)
-    let albedo_columns = albedo::by_column(spec);
+    // (the other cloth albedo tables too: albedo::by_column; and dielectric-albedo-avg, whose
+    // column is one roughness with every eta)
+    let albedo_columns = dense.is_none() && albedo::by_column(spec);
     let average_columns = spec.kind == TableKind::DielectricAlbedoAvg;
     let by_column =
         (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns || average_columns;
@@ -574,3 +575,4 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
     }
 }
+pub mod ltc_layout;

@@ -13,7 +13,11 @@
 //! * Kulla–Conty `E = 1`, `E_avg = 1`; `albedo-fresnel` `E = F_p(μ)` of the slice's Fresnel;
 //! * the smooth dielectric interface `R = F(μ; η)`, `T = 1 − R` (total internal reflection
 //!   included in F), so `E = R + T = 1` and `E_avg = 1`;
-//! * Smith `G1 = 1`, `G2 = 1` (0 where a cosine is 0: Λ(0) = ∞ for every α > 0);
+//! * Smith `G1 = 1`, `G2 = 1` (0 where a cosine is 0: Λ(0) = ∞ for every α > 0); the same
+//!   for Schlick-GGX with `k = α/2` (`G1 = μ/(μ(1 − k) + k) → 1`); Schlick-GGX with
+//!   Karis' direct-light `k = (√α + 1)²/8 → 1/8`: `G1(μ) = μ/(7μ/8 + 1/8)`, so the mirror
+//!   lobe carries `G1(μ)²` (`E = F(μ) G1(μ)²`, `A = (1 − (1 − μ)⁵) G1(μ)²`, …) and
+//!   `G2 = G1(n·v) G1(n·l)`;
 //! * `E_avg = 2∫₀¹ E(μ) μ dμ` of the limit E, by adaptive Gauss–Kronrod.
 //!
 //! The sheen NDF (Charlie) has no mirror limit (its lobe concentrates at grazing half
@@ -22,6 +26,7 @@
 
 use super::spec::{DfgLayout, TableKind, TableSpec};
 use super::texel::TexelResult;
+use crate::model::masking::SchlickGgx;
 use crate::model::{Fresnel, Masking, NdfKind};
 use crate::quadrature::{integrate1, Tolerance};
 
@@ -52,17 +57,34 @@ pub(crate) fn supported(spec: &TableSpec) -> Result<(), String> {
 
 /// The masking term at the mirror configuration of α = 0 (n·h = 1, v·h = n·l = n·v = μ).
 fn mirror_g(masking: Masking, mu: f64) -> f64 {
+    g2_at_zero(masking, mu, mu)
+}
+
+/// The masking term G2(n·v, n·l) at α = 0, for the terms that are functions of the two
+/// cosines (and 1 for the V-groove term at h = n).
+fn g2_at_zero(masking: Masking, v: f64, l: f64) -> f64 {
+    let above = |x: f64| if x > 0.0 { 1.0 } else { 0.0 };
     match masking {
         Masking::None | Masking::VGroove => 1.0,
-        Masking::SmithSeparable | Masking::SmithHeightCorrelated => {
-            if mu > 0.0 {
-                1.0
+        // Λ → 0 above the horizon; Schlick's G1 with k = α/2 → 0 is μ/μ = 1
+        Masking::SmithSeparable | Masking::SmithHeightCorrelated | Masking::SchlickGgx => {
+            above(v) * above(l)
+        }
+        // k = (√α + 1)²/8 → 1/8: G1(μ) = μ/(μ·7/8 + 1/8), G1² at the mirror
+        Masking::SchlickGgxDirect => {
+            let s = SchlickGgx::direct(0.0);
+            s.g1(v) * s.g1(l)
+        }
+        // (Charlie only, refused by `supported`)
+        Masking::Ashikhmin => {
+            let d = v + l - v * l;
+            if d > 0.0 {
+                v * l / d
             } else {
                 0.0
             }
         }
-        // (Charlie only, refused by `supported`)
-        Masking::Ashikhmin => mu / (2.0 - mu),
+        Masking::ContyKulla | Masking::ContyKullaSoftened => 0.0,
     }
 }
 
@@ -142,7 +164,7 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
         TableKind::G1 => TexelResult::exact(vec![mirror_g(m.masking, mu())]),
         TableKind::G2 => {
             let (v, l) = (mu(), spec.axes[1].coord(idx[1]));
-            TexelResult::exact(vec![if v > 0.0 && l > 0.0 { 1.0 } else { 0.0 }])
+            TexelResult::exact(vec![g2_at_zero(m.masking, v, l)])
         }
         TableKind::Ndf
         | TableKind::Vgroove

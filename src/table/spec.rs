@@ -175,8 +175,63 @@ pub enum DfgLayout {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Storage {
+    /// IEEE 754 binary32.
     F32,
+    /// IEEE 754 binary16, rounded to nearest (ties to even).
     F16,
+    /// 8-bit unsigned normalized: code = round(v·255), read back as code/255 ∈ [0, 1].
+    Unorm8,
+    /// 16-bit unsigned normalized: code = round(v·65535), read back as code/65535 ∈ [0, 1].
+    Unorm16,
+}
+
+impl Storage {
+    pub const ALL: [Storage; 4] = [
+        Storage::F32,
+        Storage::F16,
+        Storage::Unorm8,
+        Storage::Unorm16,
+    ];
+
+    /// The name a preset and the sidecar use (`f32`, `f16`, `unorm8`, `unorm16`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Storage::F32 => "f32",
+            Storage::F16 => "f16",
+            Storage::Unorm8 => "unorm8",
+            Storage::Unorm16 => "unorm16",
+        }
+    }
+
+    /// Bytes of one stored component.
+    pub fn bytes(self) -> usize {
+        match self {
+            Storage::F32 => 4,
+            Storage::F16 | Storage::Unorm16 => 2,
+            Storage::Unorm8 => 1,
+        }
+    }
+
+    /// Whether this is a normalized-integer storage (values in [0, 1] as codes).
+    pub fn is_unorm(self) -> bool {
+        matches!(self, Storage::Unorm8 | Storage::Unorm16)
+    }
+
+    /// The largest code of a normalized-integer storage, 2ⁿ − 1 (255, 65535); `None` for
+    /// the float storages.
+    pub fn unorm_max(self) -> Option<u32> {
+        match self {
+            Storage::Unorm8 => Some(255),
+            Storage::Unorm16 => Some(65535),
+            Storage::F32 | Storage::F16 => None,
+        }
+    }
+
+    /// The quantization step of a normalized-integer storage, 1/(2ⁿ − 1), in stored units
+    /// (a rounded value is off by at most half of it); `None` for the float storages.
+    pub fn quantization_step(self) -> Option<f64> {
+        self.unorm_max().map(|m| 1.0 / m as f64)
+    }
 }
 
 /// The BRDF model of a table, before a roughness is chosen.

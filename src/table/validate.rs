@@ -215,6 +215,18 @@ impl TableSpec {
                         if let Some(n) = ndf {
                             Ndf::new(n, a).map_err(|e| format!("{f}: texel {i}: {e}"))?;
                         }
+                        if a > 1.0
+                            && matches!(
+                                self.model.masking,
+                                Masking::ContyKulla | Masking::ContyKullaSoftened
+                            )
+                        {
+                            return Err(format!(
+                                "{f}: texel {i} is at alpha {}, but the conty-kulla Lambda is fitted for alpha in (0, 1] \
+                                 (its coefficients interpolate in t = (1 - alpha)^2 between alpha = 0 and 1)",
+                                crate::numfmt::num(a)
+                            ));
+                        }
                     }
                 }
             }
@@ -273,7 +285,10 @@ impl TableSpec {
         // (α = 1e-9, cos θv = 1e-6: ~10⁴), which no absolute tolerance reaches in bounded time
         if m.ndf == Some(NdfKind::Charlie)
             && !matches!(kind, TableKind::Ndf | TableKind::G1)
-            && m.masking != Masking::Ashikhmin
+            && !matches!(
+                m.masking,
+                Masking::Ashikhmin | Masking::ContyKulla | Masking::ContyKullaSoftened
+            )
         {
             let what = if m.masking.is_smith() {
                 "smith".to_string()
@@ -281,9 +296,27 @@ impl TableSpec {
                 format!("{:?}", m.masking.name())
             };
             return Err(format!(
-                "{what} masking of the charlie NDF is not supported: use masking ashikhmin (charlie is a sheen \
-                 distribution, defined with the ashikhmin visibility)"
+                "{what} masking of the charlie NDF is not supported: use masking ashikhmin, conty-kulla or \
+                 conty-kulla-softened (charlie is a sheen distribution, defined with these visibilities)"
             ));
+        }
+        // Schlick-GGX's k is fitted to GGX's Smith G1 (Karis 2013), Conty–Kulla's Λ to the
+        // Charlie NDF (Estevez & Kulla 2017): with another NDF they approximate nothing
+        if let Some(only) = m.masking.only_for() {
+            if kind != TableKind::Ndf && m.ndf != Some(only) {
+                return Err(format!(
+                    "model.masking {:?} is defined for the {} NDF only ({}), got {}",
+                    m.masking.name(),
+                    only.name(),
+                    if only == NdfKind::Ggx {
+                        "its k is fitted to the Smith G1 of GGX"
+                    } else {
+                        "its Lambda is fitted to the charlie sheen NDF"
+                    },
+                    m.ndf
+                        .map_or("no ndf".to_string(), |n| format!("ndf {}", n.name()))
+                ));
+            }
         }
         match kind {
             TableKind::Ndf => {
@@ -297,10 +330,11 @@ impl TableSpec {
             }
             TableKind::G2 => {
                 let n = need_ndf("")?;
-                if !(m.masking.is_smith() || m.masking == Masking::Ashikhmin) {
+                if !m.masking.of_cosines_alone() || m.masking == Masking::None {
                     return Err(format!(
                         "model.masking {:?} is not a function of (cos theta_v, cos theta_l) alone; a g2 table accepts \
-                         smith-separable, smith-height-correlated or ashikhmin (for the V-groove term use the vgroove kind)",
+                         smith-separable, smith-height-correlated, ashikhmin, schlick-ggx, schlick-ggx-direct, conty-kulla \
+                         or conty-kulla-softened (for the V-groove term use the vgroove kind)",
                         m.masking.name()
                     ));
                 }

@@ -23,7 +23,7 @@
 //!
 //! The BRDF terms are re-implemented here from their textbook formulas (GGX/Beckmann D and
 //! Λ, Gaussian normalization computed by this file's own quadrature, Blinn-Phong, Charlie,
-//! V-groove, Ashikhmin, Schlick weight). The one exception is the Smith G1 of the Gaussian
+//! V-groove, Ashikhmin, Schlick-GGX, Conty–Kulla's fitted Λ, Schlick weight). The one exception is the Smith G1 of the Gaussian
 //! and Blinn-Phong NDFs, which has no closed form: it is taken from the library
 //! (`Ndf::g1`) and checked independently by the weak white furnace test, which is exactly
 //! the projected-area identity that defines it.
@@ -543,6 +543,52 @@ impl RefModel {
                 x.min(1.0)
             }
             Masking::Ashikhmin => nl * nv / (nl + nv - nl * nv),
+            // Schlick 1994, eq. 19, G1 = 1/((1 − k) + k/μ), with Karis' (2013) k = α/2
+            // (image-based lighting) or k = (r + 1)²/8, r = √α (analytic lights)
+            Masking::SchlickGgx | Masking::SchlickGgxDirect => {
+                let k = if self.masking == Masking::SchlickGgx {
+                    self.alpha / 2.0
+                } else {
+                    (self.alpha.sqrt() + 1.0).powi(2) / 8.0
+                };
+                let g1 = |mu: f64| {
+                    if mu <= 0.0 {
+                        0.0
+                    } else {
+                        1.0 / ((1.0 - k) + k / mu)
+                    }
+                };
+                g1(nv) * g1(nl)
+            }
+            Masking::ContyKulla | Masking::ContyKullaSoftened => {
+                if nv <= 0.0 || nl <= 0.0 {
+                    return 0.0;
+                }
+                let light = if self.masking == Masking::ContyKullaSoftened {
+                    // BSDL's terminator softening, light side only: Λ^(1 + 2(1 − μ)⁸)
+                    self.ck_lambda(nl).powf(1.0 + 2.0 * (1.0 - nl).powi(8))
+                } else {
+                    self.ck_lambda(nl)
+                };
+                1.0 / (1.0 + self.ck_lambda(nv) + light)
+            }
+        }
+    }
+
+    /// Conty Estevez & Kulla's fitted sheen Λ in the form KHR_materials_sheen writes it:
+    /// `l(x) = a/(1 + b x^c) + d x + e` with (a, b, c, d, e) = mix(fit at α = 1, fit at
+    /// α = 0, (1 − α)²), `Λ(μ) = exp(l(μ))` for μ < 0.5, `exp(2 l(0.5) − l(1 − μ))` above.
+    pub fn ck_lambda(&self, mu: f64) -> f64 {
+        let one = [21.5473, 3.82987, 0.19823, -1.97760, -4.32054];
+        let zero = [25.3245, 3.32435, 0.16801, -1.27393, -4.85967];
+        let w = (1.0 - self.alpha) * (1.0 - self.alpha);
+        let p: Vec<f64> = one.iter().zip(zero).map(|(x, y)| x + (y - x) * w).collect();
+        let l = |x: f64| p[0] / (1.0 + p[1] * x.powf(p[2])) + p[3] * x + p[4];
+        let mu = mu.min(1.0);
+        if mu < 0.5 {
+            l(mu).exp()
+        } else {
+            (2.0 * l(0.5) - l(1.0 - mu)).exp()
         }
     }
 

@@ -29,6 +29,9 @@ const VK_FORMATS = { // vkFormat -> [three.js format, type, typed array]
     76: [THREE.RedFormat, THREE.HalfFloatType, Uint16Array], // R16_SFLOAT
     83: [THREE.RGFormat, THREE.HalfFloatType, Uint16Array], // R16G16_SFLOAT
     97: [THREE.RGBAFormat, THREE.HalfFloatType, Uint16Array], // R16G16B16A16_SFLOAT
+    9: [THREE.RedFormat, THREE.UnsignedByteType, Uint8Array], // R8_UNORM ("storage": "unorm8")
+    16: [THREE.RGFormat, THREE.UnsignedByteType, Uint8Array], // R8G8_UNORM
+    37: [THREE.RGBAFormat, THREE.UnsignedByteType, Uint8Array], // R8G8B8A8_UNORM
 };
 async function loadArrayTable(url) {
     const ktx = read(new Uint8Array(await (await fetch(url)).arrayBuffer()));
@@ -111,8 +114,13 @@ export async function runWebGL(cases, report) {
         renderer: gl.getParameter(gl.RENDERER),
         float_linear: gl.getExtension('OES_texture_float_linear') !== null,
         color_buffer_float: gl.getExtension('EXT_color_buffer_float') !== null,
+        texture_norm16: gl.getExtension('EXT_texture_norm16') !== null,
     };
     for (const c of cases) {
+        if (c.needs && gl.getExtension(c.needs) === null) {
+            await report(c, null, 'skipped: no ' + c.needs);
+            continue;
+        }
         try {
             let texture;
             if (c.layout === 'array') {

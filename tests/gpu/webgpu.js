@@ -8,6 +8,9 @@ import { read } from 'three/addons/libs/ktx-parse.module.js';
 const WEBGPU_FORMATS = {
     100: ['r32float', 1], 103: ['rg32float', 2], 109: ['rgba32float', 4],
     76: ['r16float', 1], 83: ['rg16float', 2], 97: ['rgba16float', 4],
+    9: ['r8unorm', 1], 16: ['rg8unorm', 2], 37: ['rgba8unorm', 4], // "storage": "unorm8"
+    // "storage": "unorm16": only with the 'texture-formats-tier1' feature, and not filterable
+    70: ['r16unorm', 1], 77: ['rg16unorm', 2], 91: ['rgba16unorm', 4],
 };
 // A brdfbake .ktx2 file (an ArrayBuffer) as a texture view: 2D (1D and 2D tables), 3D
 // ("layout_3d": "volume") or 2D array ("layout_3d": "array"). Rows upload in file order: no flip.
@@ -105,6 +108,7 @@ export async function runWebGPU(cases, report) {
     }
     info.adapter = adapter.info ? adapter.info.architecture || adapter.info.vendor : 'unknown';
     info.float32_filterable = adapter.features.has('float32-filterable');
+    info.texture_formats_tier1 = adapter.features.has('texture-formats-tier1');
     const withF32 = await tableDevice();
     const withoutF32 = await adapter.requestDevice();
     for (const c of cases) {

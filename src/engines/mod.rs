@@ -1,0 +1,182 @@
+//! Tables as engines ship them. An engine preset (`presets/engines/`) bakes a shipped table
+//! on the engine's own grid — axes, texel positions, clamps, axis order, channels, storage —
+//! and says where the original lives (`source`) and how its file holds it (`shipped`,
+//! [`shipped::Shipped`]). `brdfbake compare` reads the shipped file ([`shipped`]) and compares
+//! it, and brdfbake's own table, with exact values at every texel ([`compare`]).
+
+pub mod compare;
+pub mod shipped;
+
+use crate::lut::Lut;
+use crate::preset::PresetTable;
+use crate::table::{BakeError, BakeOptions, Storage};
+use serde::Serialize;
+pub use shipped::Source;
+
+/// The comparison of one preset table with its shipped file.
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    pub preset: String,
+    pub table: String,
+    pub file: String,
+    /// Stored axis sizes.
+    pub dims: Vec<usize>,
+    /// The tolerance the exact reference was baked at (100× the table's, or the table's own
+    /// where the tighter one cannot be reached), and its largest error estimate.
+    pub reference_tolerance: f64,
+    pub exact_error_estimate: f64,
+    /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
+    /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
+    pub brdfbake_bound: f64,
+    pub channels: Vec<compare::ChannelComparison>,
+    /// The shipped table's error per texel (shipped − exact) of each compared channel, in
+    /// the stored layout: for the report's heatmaps.
+    #[serde(skip)]
+    pub errors: Lut,
+}
+
+/// Why a comparison could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    /// The preset or the file cannot be compared (exit 2).
+    #[error("{0}")]
+    Input(String),
+    /// The bake failed: the time limit, or a tolerance miss (exit 1).
+    #[error(transparent)]
+    Bake(#[from] BakeError),
+}
+
+/// The tolerance of the exact reference: 100× tighter than the table's own, at most 1e-9,
+/// at least the tightest the rules accept.
+fn reference_tolerance(tol: f64) -> f64 {
+    (tol / 100.0).clamp(crate::table::spec::MIN_TOLERANCE, 1e-9)
+}
+
+/// `v` as the table's storage holds it (f16 rounds to nearest even; UNORM to its code, read
+/// back; f32 as is). A value a UNORM storage cannot hold stays as it is (the bake refuses it).
+fn stored_value(storage: Storage, v: f32) -> f32 {
+    match storage {
+        Storage::F16 => half::f16::from_f32(v).to_f32(),
+        Storage::F32 => v,
+        Storage::Unorm8 | Storage::Unorm16 => {
+            let max = storage.unorm_max().expect("a UNORM storage");
+            crate::encode::unorm::code(v, max)
+                .map_or(v, |c| crate::encode::unorm::value(c, max) as f32)
+        }
+    }
+}
+
+/// Compares table `t` of preset `preset` with `bytes`, the engine's shipped file (`file`
+/// names it in messages). Bakes the table twice: as the preset says, and as the exact
+/// reference.
+pub fn compare_table(
+    preset: &str,
+    t: &PresetTable,
+    bytes: &[u8],
+    file: &str,
+    deadline: Option<&crate::deadline::Deadline>,
+) -> Result<Comparison, CompareError> {
+    let shipped = t.shipped.as_ref().ok_or_else(|| {
+        CompareError::Input(format!(
+            "preset {preset}: table {} has no `shipped` description (how the engine's file holds it), so there is nothing to compare with",
+            t.spec.name
+        ))
+    })?;
+    let stored_axes = t.stored_axes();
+    let dims = [0, 1, 2].map(|k| stored_axes.get(k).map_or(1, |a| a.size));
+    let table = shipped
+        .read(bytes, dims, file)
+        .map_err(CompareError::Input)?;
+    let ours = crate::table::bake_with(
+        &t.spec,
+        &BakeOptions {
+            deadline,
+            accept_error_estimate: t.accept_error_estimate,
+        },
+    )?;
+    let mut ref_spec = t.spec.clone();
+    ref_spec.tolerance = reference_tolerance(t.spec.tolerance);
+    let reference = |spec: &crate::table::TableSpec| {
+        crate::table::bake_with(
+            spec,
+            &BakeOptions {
+                deadline,
+                // (where the reference's rule cannot reach its tighter tolerance it keeps what
+                // it reached, at most what the preset accepts)
+                accept_error_estimate: Some(t.accept_error_estimate.unwrap_or(t.spec.tolerance)),
+            },
+        )
+    };
+    // a texel whose tighter rule does not converge (a near-singular lobe at a grazing view)
+    // leaves the reference at the preset's own tolerance, which the preset's bake met
+    let (exact, reference_tolerance) = match reference(&ref_spec) {
+        Ok(l) => (l, ref_spec.tolerance),
+        Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
+        Err(e) => return Err(e.into()),
+    };
+    let ours = t.stored(ours);
+    let stored = (t.spec.storage != Storage::F32).then(|| {
+        let mut s = ours.clone();
+        for v in s.data.iter_mut() {
+            // (the storage holds value × scale)
+            let scale = t.scale as f32;
+            *v = stored_value(t.spec.storage, *v * scale) / scale;
+        }
+        s
+    });
+    let exact = t.stored(exact);
+    let channels = compare::compare(&table, &ours, stored.as_ref(), &exact);
+    // the shipped table's errors, for the report
+    let mut errors = exact.clone();
+    errors.channels = channels
+        .iter()
+        .map(|c| crate::lut::Channel {
+            name: c.channel.clone(),
+            meaning: format!("shipped {} - exact", c.channel),
+        })
+        .collect();
+    let nce = exact.channels.len();
+    let ncf = table.channels.len();
+    errors.data = (0..exact.texel_count())
+        .flat_map(|i| {
+            let table = &table;
+            let exact = &exact;
+            channels.iter().map(move |c| {
+                let e = exact
+                    .channels
+                    .iter()
+                    .position(|x| x.name == c.channel)
+                    .expect("compared");
+                let f = table
+                    .channels
+                    .iter()
+                    .position(|x| x == &c.channel)
+                    .expect("compared");
+                (table.values[i * ncf + f] - exact.data[i * nce + e] as f64) as f32
+            })
+        })
+        .collect();
+    // (the computed texels are f32: 2^-24 relative, well below 1e-6 for values up to ~16)
+    let largest = exact.data.iter().fold(0.0f64, |m, v| m.max(v.abs() as f64));
+    let rounding = largest * 2f64.powi(-24) + t.spec.tolerance;
+    Ok(Comparison {
+        preset: preset.to_string(),
+        table: t.spec.name.clone(),
+        file: file.to_string(),
+        dims: stored_axes.iter().map(|a| a.size).collect(),
+        reference_tolerance,
+        exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
+        brdfbake_bound: 1e-6f64.max(rounding),
+        channels,
+        errors,
+    })
+}
+
+impl Comparison {
+    /// Whether brdfbake's table meets [`Comparison::brdfbake_bound`] in every channel.
+    pub fn brdfbake_within_bound(&self) -> bool {
+        self.channels
+            .iter()
+            .all(|c| c.brdfbake.max_rel <= self.brdfbake_bound)
+    }
+}
