@@ -422,6 +422,11 @@ fn reference_texel(spec: &TableSpec, lut: &Lut, idx: [usize; 3]) -> (Vec<Option<
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             (vec![None; lut.channels.len()], 0.0)
         }
+        // the other dielectric kinds: against the reference and Cycles' tables by
+        // tests/dielectric_kinds.rs, not measured here
+        TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+            (vec![None; lut.channels.len()], 0.0)
+        }
         // classic models: the view-side albedo int f(l, v) (n.l) dl by the l-space reference;
         // E_y (view azimuth 90 degrees) is E_x of the model with its tangent axes swapped
         // (aspect -> 1/aspect); the azimuth average has no reference here

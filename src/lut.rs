@@ -56,7 +56,7 @@ pub enum Warp {
     Linear,
     /// `p = √(1 − x)`, `x = 1 − p²`; p in [0, 1] (cosine axes).
     SqrtOneMinus,
-    /// `p = √x`, `x = p²`; p in [0, 1] (cosine axes).
+    /// `p = √x`, `x = p²`; p in [0, 1] (cosine and Fresnel axes: Cycles' √((η − 1)/(η + 1))).
     Sqrt,
     /// `p = acos x` in radians, `x = cos p`; p in [0, π/2] (cosine axes).
     Acos,

@@ -230,10 +230,14 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::AlbedoAvg => "E_avg; Kulla-Conty multiple scattering lobe f_ms(mu_o, mu_i) = (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).",
         TableKind::Dfg => match spec.dfg_layout {
             Some(DfgLayout::Karis) => "specular = prefiltered_radiance * (F0 * A + B) (Karis 2013 split sum, Schlick Fresnel).",
+            Some(DfgLayout::KarisF82) => "specular = prefiltered_radiance * (F0 * A + F90 * B - b * F82) for the F82-tint Fresnel F = F0 + (F90 - F0)(1 - v.h)^5 - b (v.h)(1 - v.h)^6 (Hoffman 2023; with F90 = 1 and the tint F82 at cos = 1/7: b = mix(F0, 1, (6/7)^5) (1 - F82) 7^7/6^6, as EEVEE's brdf_f82_tint_lut).",
             _ => "E = (1 - F0) * R + F0 * G = mix(R, G, F0); multiscatter energy compensation: specular *= 1 + F0 * (1 / G - 1); cloth: sheen = prefiltered * B (Filament).",
         },
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             crate::table::energy::reconstruction(spec)
+        }
+        TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+            crate::table::dielectric::reconstruction(spec)
         }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::reconstruction(spec)
@@ -265,22 +269,29 @@ fn model_json(spec: &TableSpec) -> Value {
         "fresnel": {"name": m.fresnel.name(), "formula": m.fresnel.formula(), "parameters": m.fresnel},
         "diffuse": {"name": if m.diffuse_weight > 0.0 { "lambert" } else { "none" }, "weight": m.diffuse_weight, "formula": "f_d = w_d / pi"},
     });
-    if matches!(
-        spec.kind,
-        TableKind::AlbedoFresnel | TableKind::DielectricBtdf
-    ) {
+    if spec.kind == TableKind::AlbedoFresnel || spec.kind.is_dielectric() {
+        let z = spec.axes.len() - 1;
         v["fresnel"] = json!({
             "name": "per slice, from the fresnel axis",
             "parameters": m.fresnel,
             "parameters_meaning": "the preset's model.fresnel: none (Schlick for an F0 axis, exact dielectric for an eta axis) or a conductor whose k is kept and eta replaced by the axis",
-            "slices": (0..spec.axes[2].size).map(|z| {
-                let f = crate::table::energy::fresnel_of_slice(spec, z);
+            "slices": (0..spec.axes[z].size).map(|k| {
+                let f = if spec.kind == TableKind::AlbedoFresnel {
+                    crate::table::energy::fresnel_of_slice(spec, k)
+                } else {
+                    crate::model::Fresnel::Dielectric { eta: crate::table::dielectric::eta_of_slice(spec, k) }
+                };
                 json!({"name": f.name(), "formula": f.formula(), "parameters": f})
             }).collect::<Vec<_>>(),
         });
     }
-    if spec.kind == TableKind::DielectricBtdf {
-        v["form"] = json!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, G = G1(v) G1(l) separable Smith");
+    if spec.kind.is_dielectric() {
+        let g = if m.masking == crate::model::Masking::SmithHeightCorrelated {
+            "G = 1/(1 + Lambda(v) + Lambda(l)) height-correlated Smith on both sides (as Cycles and pbrt-v4; Heitz 2014 derives B(1 + Lambda(v), 1 + Lambda(l)) for transmission)"
+        } else {
+            "G = G1(v) G1(l) separable Smith"
+        };
+        v["form"] = json!(format!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, {g}"));
     }
     if spec.kind == TableKind::Dfg {
         v["split_sum"] = json!({

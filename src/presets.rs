@@ -63,6 +63,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/cycles-ggx-eavg.json"),
     ),
     (
+        "cycles-glass-e",
+        include_str!("../presets/engines/cycles-glass-e.json"),
+    ),
+    (
+        "cycles-glass-eavg",
+        include_str!("../presets/engines/cycles-glass-eavg.json"),
+    ),
+    (
         "eevee-bsdf-split-sum-ggx",
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),

@@ -1064,6 +1064,8 @@ pub fn exact_at(
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             crate::table::energy::texel_fn(&spec)
         }
+        TableKind::DielectricAlbedo => crate::table::dielectric::texel_fn(&spec),
+        TableKind::DielectricAlbedoAvg => crate::table::dielectric_average::texel_fn(&spec),
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::texel_fn(&spec)
         }

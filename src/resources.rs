@@ -222,6 +222,22 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             });
             (7_500.0 * frac + 750.0 * (1.0 - frac), 0.0)
         }
+        // dielectric-albedo: measured on Cycles' glass_E layout; η < 1 slices one rule each
+        K::DielectricAlbedo => {
+            let frac = spec.axes.get(2).map_or(1.0, |z| {
+                let below = (0..z.size)
+                    .filter(|&k| {
+                        z.fresnel_parameter(k).is_some_and(|eta| {
+                            eta < 1.0
+                                && matches!(z.quantity, crate::lut::Quantity::Fresnel(q) if q.is_eta())
+                        })
+                    })
+                    .count();
+                below as f64 / z.size.max(1) as f64
+            });
+            (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
+        }
+        K::DielectricAlbedoAvg => (100_000.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
         // Models with the 1D fast path (src/kernels/classic_lobes.rs) measured on the

@@ -208,7 +208,7 @@ fn bad_warps_and_clamps_are_named() {
         .expect_err("a warped roughness axis")
         .to_string();
     assert!(
-        e.contains("axes.roughness.warp") && e.contains("cosine axes only"),
+        e.contains("axes.roughness.warp") && e.contains("cosine and fresnel axes only"),
         "{e}"
     );
 }

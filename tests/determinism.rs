@@ -1,5 +1,7 @@
 //! Byte-for-byte determinism of every output format across runs and thread counts. (The
-//! GGX dfg table's 40-texel rows are long enough to be interpolated: src/quadrature/interp1d.rs.)
+//! GGX dfg table's 40-texel rows are long enough to be interpolated: src/quadrature/interp1d.rs;
+//! the dielectric tables share rules between their eta >= 1 slices and columns, and karis-f82
+//! goes column by column.)
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -19,7 +21,16 @@ const PRESET: &str = r#"{
      "axes": {"cos_theta_v": {"size": 4}, "cos_theta_l": {"size": 4}, "roughness": {"size": 3, "quantity": "cook-torrance-m"}}},
     {"name": "eavg", "kind": "albedo-avg",
      "model": {"ndf": "blinn-phong", "masking": "v-groove", "fresnel": {"type": "schlick", "f0": 0.04}},
-     "axes": {"roughness": {"size": 3, "range": [2, 100], "quantity": "blinn-phong-exponent"}}}
+     "axes": {"roughness": {"size": 3, "range": [2, 100], "quantity": "blinn-phong-exponent"}}},
+    {"name": "glass", "kind": "dielectric-albedo",
+     "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+     "axes": {"cos_theta_v": {"size": 6}, "roughness": {"size": 5, "quantity": "perceptual"}, "fresnel": {"size": 5, "quantity": "eta-reflectance", "range": [-0.5, 0.5], "convention": "endpoints"}}},
+    {"name": "glass_avg", "kind": "dielectric-albedo-avg",
+     "model": {"ndf": "ggx", "masking": "smith-separable"},
+     "axes": {"roughness": {"size": 5, "quantity": "perceptual"}, "fresnel": {"size": 4, "quantity": "inverse-eta-reflectance", "range": [-0.5, 0.5], "convention": "endpoints"}}},
+    {"name": "f82", "kind": "dfg", "layout": "karis-f82",
+     "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+     "axes": {"cos_theta_v": {"size": 40}, "roughness": {"size": 6, "quantity": "perceptual"}}}
   ]
 }"#;
 

@@ -498,15 +498,15 @@ fn fresnel_axis_errors_name_the_field() {
                 ggx,
                 r#"{"size": 2, "quantity": "sqrt-f0"}"#,
             ),
-            vec!["tables[0]", "eta or eta-reflectance"],
+            vec!["tables[0]", "eta, eta-reflectance, inverse-eta-reflectance"],
         ),
         (
             preset(
                 "dielectric-btdf",
-                r#"{"ndf": "ggx", "masking": "smith-height-correlated"}"#,
+                r#"{"ndf": "ggx", "masking": "v-groove"}"#,
                 r#"{"size": 2, "quantity": "eta", "range": [1.1, 2]}"#,
             ),
-            vec!["tables[0]", "smith-separable"],
+            vec!["tables[0]", "smith-separable", "smith-height-correlated"],
         ),
         (
             preset(
@@ -514,7 +514,7 @@ fn fresnel_axis_errors_name_the_field() {
                 ggx,
                 r#"{"size": 2, "quantity": "eta-reflectance", "range": [0.5, 1], "convention": "endpoints"}"#,
             ),
-            vec!["axes.fresnel", "eta must be in [0.01, 100]"],
+            vec!["axes.fresnel", "eta must be in [1e-4, 100]"],
         ),
         (
             preset("albedo-fresnel", ggx, r#"{"size": 2, "quantity": "f00"}"#),

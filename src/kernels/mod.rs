@@ -4,6 +4,7 @@
 //! tried it falls back (the order is in each kind's file under [`crate::table`]).
 
 pub mod classic_lobes;
+pub mod dielectric_average;
 pub mod ggx_polar;
 pub mod ltc_check;
 pub mod ltc_fit;
@@ -12,6 +13,7 @@ pub mod ltc_polygon;
 pub mod ltc_probe;
 pub mod ltc_reference;
 pub mod ltc_rule;
+pub mod micro_normals;
 pub mod sheen_azimuth;
 pub mod sheen_polar;
 pub mod vgroove;

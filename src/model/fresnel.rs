@@ -99,6 +99,16 @@ pub fn schlick_weight(c: f64) -> f64 {
     m2 * m2 * m
 }
 
+/// The F82-tint weight `c (1 − c)⁶` (Hoffman 2023, "Generalization of Adobe's Fresnel
+/// Model"; Kutz, Hasan & Edmondson 2021): F = F_Schlick(c) − b·c(1 − c)⁶, whose peak at
+/// c = 1/7 (θ ≈ 82°) sets the tint.
+#[inline]
+pub fn f82_tint_weight(c: f64) -> f64 {
+    let m = (1.0 - c).clamp(0.0, 1.0);
+    let m3 = m * m * m;
+    c * m3 * m3
+}
+
 /// Unpolarized dielectric Fresnel reflectance.
 #[inline]
 pub fn dielectric(c: f64, eta: f64) -> f64 {

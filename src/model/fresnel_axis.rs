@@ -5,6 +5,15 @@
 //! F0 = ((η − 1)/(η + 1))², Cook & Torrance 1982, eq. 9): it maps η ∈ (0, ∞) onto (−1, 1)
 //! with η = 1 at 0, η = 1/x at the mirror point −t of η = x, so one axis covers the inside
 //! (η < 1) and outside (η > 1) of an interface with texels spread evenly in reflectance.
+//! Its mirror image, `inverse-eta-reflectance` x = (1 − η)/(1 + η), is the same axis seen
+//! from the other side: x ≥ 0 is η ≤ 1 (Cycles' `glass_inv_*` tables, which are indexed by
+//! the reflectance of 1/η).
+
+/// The smallest relative index a Fresnel axis accepts (Cycles' `glass_inv_*` tables reach
+/// η = 1/99.5).
+pub const MIN_ETA: f64 = 1e-4;
+/// The largest relative index a Fresnel axis accepts.
+pub const MAX_ETA: f64 = 100.0;
 
 /// What a `fresnel` axis coordinate is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -18,14 +27,18 @@ pub enum FresnelQuantity {
     Eta,
     /// t = (η − 1)/(η + 1) ∈ (−1, 1), η = (1 + t)/(1 − t) (exact Fresnel).
     EtaReflectance,
+    /// t = (1 − η)/(1 + η) ∈ (−1, 1), η = (1 − t)/(1 + t): the reflectance of 1/η (exact
+    /// Fresnel; t ≥ 0 is η ≤ 1, the view inside the denser medium).
+    InverseEtaReflectance,
 }
 
 impl FresnelQuantity {
-    pub const ALL: [FresnelQuantity; 4] = [
+    pub const ALL: [FresnelQuantity; 5] = [
         FresnelQuantity::F0,
         FresnelQuantity::SqrtF0,
         FresnelQuantity::Eta,
         FresnelQuantity::EtaReflectance,
+        FresnelQuantity::InverseEtaReflectance,
     ];
 
     pub fn name(self) -> &'static str {
@@ -34,6 +47,7 @@ impl FresnelQuantity {
             FresnelQuantity::SqrtF0 => "sqrt-f0",
             FresnelQuantity::Eta => "eta",
             FresnelQuantity::EtaReflectance => "eta-reflectance",
+            FresnelQuantity::InverseEtaReflectance => "inverse-eta-reflectance",
         }
     }
 
@@ -42,9 +56,19 @@ impl FresnelQuantity {
         Self::ALL.into_iter().find(|q| q.name() == s)
     }
 
-    /// Whether the coordinate gives Schlick's F0 (else the index η of the exact Fresnel).
+    /// Whether the coordinate gives Schlick's F0.
     pub fn is_f0(self) -> bool {
         matches!(self, FresnelQuantity::F0 | FresnelQuantity::SqrtF0)
+    }
+
+    /// Whether the coordinate gives the relative index η of the exact Fresnel.
+    pub fn is_eta(self) -> bool {
+        matches!(
+            self,
+            FresnelQuantity::Eta
+                | FresnelQuantity::EtaReflectance
+                | FresnelQuantity::InverseEtaReflectance
+        )
     }
 
     pub fn mapping(self) -> &'static str {
@@ -54,6 +78,9 @@ impl FresnelQuantity {
             FresnelQuantity::Eta => "eta = coordinate (exact Fresnel)",
             FresnelQuantity::EtaReflectance => {
                 "eta = (1 + coordinate)/(1 - coordinate), i.e. coordinate = (eta - 1)/(eta + 1) (exact Fresnel)"
+            }
+            FresnelQuantity::InverseEtaReflectance => {
+                "eta = (1 - coordinate)/(1 + coordinate), i.e. coordinate = (1 - eta)/(1 + eta) = (1/eta - 1)/(1/eta + 1) (exact Fresnel)"
             }
         }
     }
@@ -65,6 +92,7 @@ impl FresnelQuantity {
             FresnelQuantity::F0 | FresnelQuantity::Eta => x,
             FresnelQuantity::SqrtF0 => x * x,
             FresnelQuantity::EtaReflectance => (1.0 + x) / (1.0 - x),
+            FresnelQuantity::InverseEtaReflectance => (1.0 - x) / (1.0 + x),
         }
     }
 
@@ -80,11 +108,11 @@ impl FresnelQuantity {
                 self.name()
             ));
         }
-        if p.is_finite() && (0.01..=100.0).contains(&p) {
+        if p.is_finite() && (MIN_ETA..=MAX_ETA).contains(&p) {
             return Ok(p);
         }
         Err(format!(
-            "{} coordinate {x} gives eta = {p}; eta must be in [0.01, 100]",
+            "{} coordinate {x} gives eta = {p}; eta must be in [{MIN_ETA:e}, {MAX_ETA}]",
             self.name()
         ))
     }

@@ -40,7 +40,7 @@ fn albedo_of(t: &ReportTable, mu: f64, r: f64) -> Option<f64> {
         (TableKind::Albedo, _) | (TableKind::KullaConty, _) | (TableKind::ClassicAlbedo, _) => {
             Some(v[0])
         }
-        (TableKind::Dfg, Some(DfgLayout::Karis)) => Some(v[0] + v[1]),
+        (TableKind::Dfg, Some(DfgLayout::Karis | DfgLayout::KarisF82)) => Some(v[0] + v[1]),
         (TableKind::Dfg, _) => Some(v[1]),
         _ => None,
     }
@@ -217,7 +217,7 @@ fn karis_section(t: &ReportTable, out: &mut String) {
     let ab = |mu: f64, r: f64| {
         let v = lut.lookup(&[mu, r]);
         match spec.dfg_layout {
-            Some(DfgLayout::Karis) => (v[0], v[1]),
+            Some(DfgLayout::Karis | DfgLayout::KarisF82) => (v[0], v[1]),
             _ => (v[1] - v[0], v[0]),
         }
     };

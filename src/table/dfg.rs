@@ -143,6 +143,16 @@ impl Ctx {
         } else {
             TexelResult::exact(Vec::new())
         };
+        if self.layout == DfgLayout::KarisF82 {
+            let s = self.brdfs[j]
+                .specular
+                .as_ref()
+                .expect("validated: dfg has an NDF");
+            let (v, e, n) = f82_channel(s, view.mu(), self.tol);
+            r.value.push(v);
+            r.error.push(e);
+            r.evals += n;
+        }
         if self.cloth {
             let alpha = self.axes[1].alpha(j).expect("roughness axis");
             let (v, e, n) = cloth_texel(self.sheen, view, alpha, self.tol);
@@ -180,7 +190,7 @@ impl Ctx {
         // error bound is the sum of theirs
         let ([a, b], [ea, eb], n) = split_sum_kernels(s, view.mu(), tol);
         match self.layout {
-            DfgLayout::Karis => TexelResult {
+            DfgLayout::Karis | DfgLayout::KarisF82 => TexelResult {
                 value: vec![a, b],
                 error: vec![ea, eb],
                 evals: n,
@@ -192,6 +202,28 @@ impl Ctx {
             },
         }
     }
+}
+
+/// The F82-tint channel `∫ (v·h)(1 − v·h)⁶ f cos dω_l` of a GGX lobe with Smith masking
+/// (F = 1) at view μ: `∫ b(c) D G c/(n·v) dω_h` over the micro-normals whose reflection
+/// leaves above the horizon, by the nested rule of [`crate::kernels::micro_normals`] (the
+/// weight is a polynomial in c = v·h: no kink of its own).
+pub(super) fn f82_channel(s: &Specular, mu: f64, tol: f64) -> (f64, f64, u64) {
+    use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
+    use crate::model::btdf::{Facet, SmithForm};
+    let smith = SmithForm::of(s.masking).unwrap_or(SmithForm::Separable);
+    let mu1 = mu.min(1.0);
+    let g1v = s.ndf.g1(mu1);
+    let rule = Rule {
+        etas: &[],
+        estimator: crate::quadrature::cc1d::Estimator::Tail,
+    };
+    let e = integrate_micro_normals(&s.ndf, rule, mu, tol, |h| {
+        Facet::new(&s.ndf, smith, mu1, g1v, h).map_or([0.0], |f| {
+            [f.w * f.gr * crate::model::fresnel::f82_tint_weight(f.c)]
+        })
+    });
+    (e.value[0], e.error[0], e.evals)
 }
 
 /// The cloth channel at one texel, Charlie with masking `masking`: for Ashikhmin's, the

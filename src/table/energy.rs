@@ -15,7 +15,8 @@ use crate::lut::{Channel, Quantity};
 use crate::model::{Brdf, Fresnel, FresnelQuantity, Masking, NdfKind};
 use rayon::prelude::*;
 
-/// The kind-specific checks of the three kinds (the generic axis checks are done).
+/// The kind-specific checks of the three kinds (the generic axis checks are done;
+/// `dielectric-btdf` is checked by [`super::dielectric::validate`]).
 pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
     let m = &spec.model;
     let kind = spec.kind.name();
@@ -77,43 +78,7 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
                 }
             }
         }
-        TableKind::DielectricBtdf => {
-            let q = fq.expect("three axes checked");
-            if q.is_f0() {
-                return Err(format!(
-                    "axes.fresnel.quantity must be eta or eta-reflectance for a dielectric-btdf table (the \
-                     refraction needs the index itself), got {:?}",
-                    q.name()
-                ));
-            }
-            if ndf != NdfKind::Ggx {
-                return Err(format!(
-                    "model.ndf must be ggx for a dielectric-btdf table (Walter et al. 2007), got {:?}",
-                    ndf.name()
-                ));
-            }
-            if m.masking != Masking::SmithSeparable {
-                return Err(format!(
-                    "model.masking must be smith-separable for a dielectric-btdf table (Walter et al. 2007, \
-                     eq. 23: G1(v) G1(l) on both sides), got {:?}",
-                    m.masking.name()
-                ));
-            }
-            if m.fresnel != Fresnel::None {
-                return Err(format!(
-                    "model.fresnel must be none for a dielectric-btdf table: the exact dielectric Fresnel of the \
-                     fresnel axis' eta is used, got {:?}",
-                    m.fresnel.name()
-                ));
-            }
-            if spec.axes[0].coords().iter().any(|&c| c <= 0.0) {
-                return Err(
-                    "axes.cos_theta_v: a texel at cosine 0 is not allowed for a dielectric-btdf table (R and T \
-                     divide by n.v); use the centers convention or a range starting above 0"
-                        .into(),
-                );
-            }
-        }
+        TableKind::DielectricBtdf => super::dielectric::validate(spec)?,
         _ => unreachable!("not an energy kind"),
     }
     Ok(())
@@ -231,7 +196,9 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
 /// `None`: the table is baked texel by texel.
 pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
     match spec.kind {
-        TableKind::DielectricBtdf => Some(super::dielectric::fibre_fn(spec)),
+        TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
+            Some(super::dielectric::fibre_fn(spec))
+        }
         TableKind::AlbedoFresnel => fresnel_fibre_fn(spec),
         _ => None,
     }

@@ -179,6 +179,8 @@ pub fn split_sum_by_lines(spec: &TableSpec) -> bool {
         _ => return false,
     };
     spec.kind == TableKind::Dfg
+        // (karis-f82's third channel goes texel by texel: column by column)
+        && spec.dfg_layout != Some(super::DfgLayout::KarisF82)
         && split_sum_uses_kernel(spec.model.ndf, spec.model.masking)
         && spec.model.diffuse_weight == 0.0
         && x.size >= 2
@@ -217,6 +219,10 @@ pub(crate) fn uses_fresnel_fibre(spec: &TableSpec) -> bool {
         && spec.model.ndf.is_some_and(|k| k != NdfKind::Charlie)
 }
 
+/// The nested rule over micro-normals of every `dielectric-btdf` and `dielectric-albedo` texel
+/// ([`crate::kernels::micro_normals`]), as the sidecar's `quadrature.method` states it.
+pub const MICRO_NORMALS_METHOD: &str = "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30, further where a grazing view or a tight tolerance needs it: the tail beyond is below 1e-3 of the tolerance); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation.";
+
 /// What the fibre path of an `albedo-fresnel` table does, as the sidecar's
 /// `quadrature.method` states it (followed by the per-texel method).
 pub const FRESNEL_FIBRE_METHOD: &str = "Fibres: the texels of one (mu, roughness) differ only in the Fresnel factor F(v.h), so up to 8 slices are integrated together as the channels of one nested Clenshaw-Curtis tensor rule (as below: nodes, D and G computed once, times each slice's exact Fresnel factor), refined until every channel's own estimate meets the tolerance; each texel keeps its own channel's estimate. Evaluations count the nodes, once however many slices they serve.";
@@ -233,7 +239,9 @@ pub fn describe(spec: &TableSpec) -> String {
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::method(spec)
         }
-        TableKind::DielectricBtdf => "nested quadrature over the micro-normal h: phi in [0, pi] (doubled by symmetry), u = asinh(tan theta_h / alpha) from 0 to v.h = 0 (or u = 30); panel boundaries at every kink, in closed form: in u the reflected and (eta < 1) transmitted directions' horizons and the critical angle, in phi pi/2 and (eta < 1) where the critical cone touches the azimuth line and meets the reflected horizon and the equator (square-root kinks integrated in t, x = end +- (b - a) t^2); each panel by nested Clenshaw-Curtis (9 to 129 nodes in u, 65 in phi; estimate max(|Q_k - Q_k-1|, |Q_k-1 - Q_k-2|^2 / max(|Q_k|, tol))), else adaptive Gauss-Kronrod (G7/K15, estimate |K15 - G7|); estimates summed over panels; f64 accumulation. Fibres: the eta >= 1 texels of one (mu, roughness), whose breakpoints are the same, are integrated together, up to 4, as the channels (R, T of each) of one such rule: nodes, D, G1(v) and the reflected direction computed once, each eta's Fresnel factor and refracted direction per node; a panel is refined until every channel's own estimate meets its share, and each texel keeps its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve".into(),
+        TableKind::DielectricBtdf => format!("{MICRO_NORMALS_METHOD} Fibres: the eta >= 1 texels of one (mu, roughness), whose breakpoints are the same, are integrated together, up to 4, as the channels (R, T of each) of one such rule: nodes, D, G1(v) and the reflected direction computed once, each eta's Fresnel factor and refracted direction per node; a panel is refined until every channel's own estimate meets its share, and each texel keeps its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve"),
+        TableKind::DielectricAlbedo => format!("{MICRO_NORMALS_METHOD} Fibres: the eta >= 1 texels of one (mu, roughness) with the same view cosine, whose breakpoints are the same, are integrated together as the channels of one such rule (up to 8 of them), each texel keeping its own channels' estimates; eta < 1 texels one by one. Evaluations count the u nodes, once however many texels they serve"),
+        TableKind::DielectricAlbedoAvg => "E_avg = (1/pi) int D(h) Phi(theta_h) dw_h with Phi = int c [F(c) G(v, l_r) + (1 - F(c)) G(v, l_t)] dw_v in coordinates of v about h (c = v.h, azimuth psi), the order of the v- and h-integrals exchanged (src/kernels/dielectric_average.rs): outer u = asinh(tan theta_h / alpha), middle c in [0, 1] with square-root panel ends at sin theta_h, the critical cosine and sqrt(1 - eta^2 cos^2 theta_h), inner psi over its closed-form range; each panel by nested Clenshaw-Curtis (9 to 65 nodes; 33 in psi), else adaptive Gauss-Kronrod (G7/K15); the eta >= 1 texels of one roughness as the channels of one rule, up to 8, sharing the reflected part; eta < 1 texels alone; f64 accumulation. Evaluations count the psi nodes".into(),
         TableKind::Albedo
         | TableKind::AlbedoAvg
         | TableKind::Dfg

@@ -11,6 +11,7 @@ pub mod classic_model;
 pub mod dfg;
 pub mod dfg_lines;
 pub mod dielectric;
+pub mod dielectric_average;
 pub mod energy;
 pub mod local;
 pub mod ltc;
@@ -217,9 +218,12 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     } else {
         None
     };
-    // (the other cloth albedo tables too: albedo::by_column)
+    // (the other cloth albedo tables too: albedo::by_column; and dielectric-albedo-avg, whose
+    // column is one roughness with every eta)
     let albedo_columns = dense.is_none() && albedo::by_column(spec);
-    let by_column = (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns;
+    let average_columns = spec.kind == TableKind::DielectricAlbedoAvg;
+    let by_column =
+        (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns || average_columns;
     // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
     // i + j·nx holds the fibre's texels in slice order
     let fibre = if by_column || dense.is_some() {
@@ -246,6 +250,8 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     } else if by_column {
         let column = if albedo_columns {
             albedo::column_fn(spec)
+        } else if average_columns {
+            dielectric_average::column_fn(spec)
         } else {
             dfg::column_fn(spec)
         };
@@ -271,6 +277,8 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 energy::texel_fn(spec)
             }
+            TableKind::DielectricAlbedo => dielectric::texel_fn(spec),
+            TableKind::DielectricAlbedoAvg => dielectric_average::texel_fn(spec),
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
             TableKind::Ltc | TableKind::LtcSphere => unreachable!("baked by bake_ltc above"),
         };
@@ -652,6 +660,11 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
                 ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
                 ch("B", "B = int Fc f cos dw_l"),
             ],
+            Some(DfgLayout::KarisF82) => vec![
+                ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
+                ch("B", "B = int Fc f cos dw_l"),
+                ch("F82", "F82 = int (v.h)(1 - v.h)^6 f cos dw_l: the F82-tint term; E = F0*A + B - b*F82"),
+            ],
             _ => {
                 let mut v = vec![
                     ch("R", "int Fc f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = mix(R, G, F0) = (1 - F0) R + F0 G"),
@@ -668,6 +681,9 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         },
         TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
             energy::channels(spec)
+        }
+        TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+            dielectric::channels(spec)
         }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
         TableKind::Ltc | TableKind::LtcSphere => ltc::channels(spec),

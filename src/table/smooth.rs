@@ -12,7 +12,7 @@
 //! * split sum (Karis) `A = 1 − (1 − μ)⁵`, `B = (1 − μ)⁵`; (Filament) `R = (1 − μ)⁵`, `G = 1`;
 //! * Kulla–Conty `E = 1`, `E_avg = 1`; `albedo-fresnel` `E = F_p(μ)` of the slice's Fresnel;
 //! * the smooth dielectric interface `R = F(μ; η)`, `T = 1 − R` (total internal reflection
-//!   included in F);
+//!   included in F), so `E = R + T = 1` and `E_avg = 1`;
 //! * Smith `G1 = 1`, `G2 = 1` (0 where a cosine is 0: Λ(0) = ∞ for every α > 0); the same
 //!   for Schlick-GGX with `k = α/2` (`G1 = μ/(μ(1 − k) + k) → 1`); Schlick-GGX with
 //!   Karis' direct-light `k = (√α + 1)²/8 → 1/8`: `G1(μ) = μ/(7μ/8 + 1/8)`, so the mirror
@@ -117,6 +117,8 @@ fn average(spec: &TableSpec, fresnel: Fresnel) -> (f64, f64) {
 pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
     let m = &spec.model;
     let mu = || spec.axes[0].coord(idx[0]);
+    // the view cosine of a dielectric kind
+    let view = || super::dielectric::view_cosine(spec, idx[0], idx[2]);
     let schlick = |mu: f64| crate::model::fresnel::schlick_weight(mu);
     match spec.kind {
         TableKind::Albedo => TexelResult::exact(vec![albedo(spec, m.fresnel, mu())]),
@@ -141,18 +143,24 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
             TexelResult::exact(vec![albedo(spec, f, mu())])
         }
         TableKind::DielectricBtdf => {
-            let eta = spec.axes[2]
-                .fresnel_parameter(idx[2])
-                .expect("fresnel axis");
-            let r = crate::model::fresnel::dielectric(mu(), eta);
+            let eta = super::dielectric::eta_of_slice(spec, idx[2]);
+            let r = crate::model::fresnel::dielectric(view(), eta);
             TexelResult::exact(vec![r, 1.0 - r])
         }
+        // R + T = F + (1 − F) for μ > 0 (validation keeps μ > 0)
+        TableKind::DielectricAlbedo => TexelResult::exact(vec![1.0]),
+        TableKind::DielectricAlbedoAvg => TexelResult::exact(vec![1.0]),
         TableKind::Dfg => {
             let mu = mu();
             let g = mirror_g(m.masking, mu);
             let fc = schlick(mu);
             TexelResult::exact(match spec.dfg_layout {
                 Some(DfgLayout::Karis) => vec![(1.0 - fc) * g, fc * g],
+                Some(DfgLayout::KarisF82) => vec![
+                    (1.0 - fc) * g,
+                    fc * g,
+                    crate::model::fresnel::f82_tint_weight(mu) * g,
+                ],
                 _ => vec![fc * g, g],
             })
         }

@@ -30,6 +30,13 @@ pub enum TableKind {
     /// Rough dielectric interface (GGX, Walter et al. 2007): reflection and transmission
     /// albedo R, T over (cos θv; roughness; η), 3D.
     DielectricBtdf,
+    /// Directional albedo E = R + T of a rough dielectric interface (GGX, exact Fresnel):
+    /// the light reflected or transmitted by single scattering, over (cos θv; roughness; η),
+    /// 3D (Cycles' `glass_E`, `glass_inv_E`).
+    DielectricAlbedo,
+    /// Average albedo E_avg = 2∫E(μ)μ dμ of a rough dielectric interface over (roughness; η),
+    /// 2D (Cycles' `glass_Eavg`, `glass_inv_Eavg`).
+    DielectricAlbedoAvg,
     /// Directional albedo of a classic analytic model (Phong, Blinn-Phong, Ward,
     /// Ashikhmin–Shirley, Lafortune): E(cos θv; exponent or α), 2D (`table::classic`).
     ClassicAlbedo,
@@ -47,7 +54,7 @@ pub enum TableKind {
 }
 
 impl TableKind {
-    pub const ALL: [TableKind; 10] = [
+    pub const ALL: [TableKind; 12] = [
         TableKind::Ndf,
         TableKind::G1,
         TableKind::G2,
@@ -58,11 +65,24 @@ impl TableKind {
         TableKind::KullaConty,
         TableKind::AlbedoFresnel,
         TableKind::DielectricBtdf,
+        TableKind::DielectricAlbedo,
+        TableKind::DielectricAlbedoAvg,
     ];
 
     /// The kinds of the classic analytic models (`table::classic`); not in [`Self::ALL`],
     /// which lists the microfacet kinds a [`ModelSpec`] without `classic` bakes.
     pub const CLASSIC: [TableKind; 2] = [TableKind::ClassicAlbedo, TableKind::ClassicAlbedoAniso];
+
+    /// The rough dielectric kinds (GGX interface, exact Fresnel of the fresnel axis' η,
+    /// integrated over micro-normals by [`crate::kernels::micro_normals`]).
+    pub fn is_dielectric(self) -> bool {
+        matches!(
+            self,
+            TableKind::DielectricBtdf
+                | TableKind::DielectricAlbedo
+                | TableKind::DielectricAlbedoAvg
+        )
+    }
 
     /// Whether this is one of [`Self::CLASSIC`].
     pub fn is_classic(self) -> bool {
@@ -89,6 +109,8 @@ impl TableKind {
             TableKind::KullaConty => "kulla-conty",
             TableKind::AlbedoFresnel => "albedo-fresnel",
             TableKind::DielectricBtdf => "dielectric-btdf",
+            TableKind::DielectricAlbedo => "dielectric-albedo",
+            TableKind::DielectricAlbedoAvg => "dielectric-albedo-avg",
             TableKind::ClassicAlbedo => "classic-albedo",
             TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
             TableKind::Ltc => "ltc",
@@ -106,9 +128,10 @@ impl TableKind {
             TableKind::Albedo | TableKind::Dfg => &["cos_theta_v", "roughness"],
             TableKind::AlbedoAvg => &["roughness"],
             TableKind::KullaConty => &["cos_theta_v", "roughness"],
-            TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
+            TableKind::AlbedoFresnel | TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
                 &["cos_theta_v", "roughness", "fresnel"]
             }
+            TableKind::DielectricAlbedoAvg => &["roughness", "fresnel"],
             TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
             TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
             TableKind::Ltc => &["cos_theta_v", "roughness"],
@@ -136,6 +159,12 @@ impl TableKind {
             TableKind::DielectricBtdf => {
                 "rough dielectric interface: reflection and transmission albedo R, T(cos theta_v; roughness; eta)"
             }
+            TableKind::DielectricAlbedo => {
+                "rough dielectric interface: directional albedo E = R + T(cos theta_v; roughness; eta)"
+            }
+            TableKind::DielectricAlbedoAvg => {
+                "rough dielectric interface: average albedo E_avg = 2 int_0^1 (R + T)(mu) mu dmu (roughness; eta)"
+            }
             TableKind::ClassicAlbedo => {
                 "directional albedo E(cos theta_v; exponent or alpha) of a classic model (phong, blinn-phong, ward, ashikhmin-shirley, lafortune)"
             }
@@ -158,6 +187,11 @@ impl TableKind {
 pub enum DfgLayout {
     /// Karis 2013: A = ∫(1 − Fc) f cos, B = ∫ Fc f cos; E = F0·A + B.
     Karis,
+    /// Karis' A, B and the F82-tint channel `F82 = ∫ (v·h)(1 − v·h)⁶ f cos` (EEVEE's
+    /// `brdf_ggx[64][64][3]` "metal_bias"): the albedo of the F82-tint Fresnel
+    /// F = F_Schlick − b (v·h)(1 − v·h)⁶ (Hoffman 2023, "Generalization of Adobe's Fresnel
+    /// Model"; Kutz et al. 2021) is `F0 A + B − b F82`.
+    KarisF82,
     /// Filament (Lagarde & de Rousiers 2014 / Filament's multiscatter): R = ∫ Fc f cos,
     /// G = ∫ f cos; E = mix(R, G, F0); optional cloth B = ∫ D_Charlie·V_Ashikhmin·cos.
     Filament,

@@ -48,11 +48,30 @@ impl TableSpec {
             if ax.convention == Convention::Endpoints && ax.size < 2 {
                 return Err(format!("{f}: the endpoints convention needs size >= 2"));
             }
-            if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
+            // warps apply to cosines and to Fresnel coordinates (Cycles' sqrt of
+            // (eta - 1)/(eta + 1)); every one is strictly monotone on its coordinate domain
+            let warp_ok = matches!(
+                (ax.warp, ax.quantity),
+                (Warp::Linear, _) | (_, Quantity::Cosine | Quantity::Fresnel(_))
+            );
+            if !warp_ok {
                 return Err(format!(
-                    "{f}.warp {:?} applies to cosine axes only; this axis is linear in its quantity",
+                    "{f}.warp {:?} applies to cosine and fresnel axes only; this axis is linear in its quantity",
                     ax.warp.name()
                 ));
+            }
+            if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
+                let [dlo, dhi] = ax.warp.parameter_domain().unwrap_or([lo, hi]);
+                if lo < dlo || hi > dhi {
+                    return Err(format!(
+                        "{f}.range must lie within [{}, {}] (the range of the warp's parameter {}), got [{}, {}]",
+                        crate::numfmt::num(dlo),
+                        crate::numfmt::num(dhi),
+                        ax.warp.formula(),
+                        crate::numfmt::num(lo),
+                        crate::numfmt::num(hi)
+                    ));
+                }
             }
             if let Some([c0, c1]) = ax.clamp {
                 if !(c0.is_finite() && c1.is_finite() && c0 <= c1) {
@@ -99,6 +118,8 @@ impl TableSpec {
                             | (TableKind::AlbedoFresnel, _)
                             | (TableKind::ClassicAlbedo, _)
                             | (TableKind::ClassicAlbedoAniso, _)
+                            | (TableKind::DielectricBtdf, _)
+                            | (TableKind::DielectricAlbedo, _)
                             | (TableKind::Vgroove, "n_dot_h") // (an ltc table's views: table::ltc::validate, which says why and how to clamp)
                     ) || kind == TableKind::Ltc;
                     if !zero_ok && first <= 0.0 {
@@ -366,9 +387,22 @@ impl TableSpec {
                 if self.cloth && self.dfg_layout != Some(DfgLayout::Filament) {
                     return Err("cloth is only available with layout \"filament\"".into());
                 }
+                if self.dfg_layout == Some(DfgLayout::KarisF82)
+                    && !(m.ndf == Some(NdfKind::Ggx) && m.masking.is_smith())
+                {
+                    return Err(format!(
+                        "layout \"karis-f82\" needs model.ndf ggx with smith-separable or smith-height-correlated \
+                         masking (its F82 channel is integrated over GGX micro-normals), got {:?} with {:?}",
+                        m.ndf.map_or("none", |n| n.name()),
+                        m.masking.name()
+                    ));
+                }
             }
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 super::energy::validate(self)?;
+            }
+            TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
+                super::dielectric::validate(self)?
             }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
                 unreachable!("validated above")

@@ -1,0 +1,299 @@
+//! The average albedo of a rough dielectric interface, E_avg = 2∫₀¹ E(μ) μ dμ with
+//! E = R + T (`dielectric-albedo-avg`: Cycles' `glass_Eavg`, `glass_inv_Eavg`), as one
+//! three-dimensional integral in micro-normal coordinates instead of a μ-integral of
+//! directional albedos (each itself two-dimensional).
+//!
+//! **Reduction.** With R(μ) = ∫ D(h) G(v, l_r) F(c) c/μ dω_h and T(μ) likewise (c = v·h,
+//! `crate::model::btdf`), 2∫ μ E dμ = (1/π) ∫_{v} μ E(v) dω_v, and exchanging the order:
+//!
+//! `E_avg = (1/π) ∫ D(h) Φ(θh) dω_h`, `Φ(θh) = ∫_{v·h > 0, n·v > 0} c [F(c) G(v, l_r) +
+//! (1 − F(c)) G(v, l_t)] dω_v`
+//!
+//! (each term only where its direction leaves on its own side). Isotropy makes Φ a function
+//! of θh alone, so the NDF's peak is one-dimensional: the outer integral runs over
+//! u = asinh(tan θh/α), where `D sin θh dθh = sinh u √(1 + α² sinh²u)/(π cosh³u) du`, and
+//! the NDF leaves the inner integrals. In coordinates of v about h — c = v·h and the azimuth
+//! ψ about h, measured from the plane of n and h (dω_v = dc dψ, n = cos θh h + sin θh e₁) —
+//! with a = c cos θh, b = √(1 − c²) sin θh: n·v = a + b cos ψ, n·l_r = a − b cos ψ
+//! (l_r = 2c h − v), and n·l_t = (c/η − cos θt) cos θh − (n·v)/η with cos θt =
+//! √(1 − (1 − c²)/η²) (Walter et al. 2007, eq. 40). So
+//!
+//! `Φ = 2∫₀¹ c [F(c) J_r(c) + (1 − F(c)) J_t(c)] dc`, `J_r = 2∫_{ψ_r}^{π/2} G dψ`,
+//! `J_t = ∫₀^{ψ_t} G dψ`,
+//!
+//! with the ranges in closed form: n·v > 0 and n·l_r > 0 for |cos ψ| < a/b (ψ_r = acos(a/b),
+//! 0 if a ≥ b; the integrand is symmetric about ψ = π/2), n·v > 0 and n·l_t < 0 for
+//! cos ψ > −m/b with m = min(c, η cos θt) cos θh (ψ_t = acos(−m/b), π if m ≥ b); no
+//! transmission under total internal reflection (1 − c² ≥ η²). Fresnel's F(c) has its
+//! square-root kink at the critical cosine √(1 − η²), a coordinate line here; the other
+//! kinks of the c-integrand are where the ψ-ranges become whole: c = sin θh (a = b) and,
+//! for η < 1, c = √(1 − η² cos²θh) (η cos θt cos θh = b). All three are panel boundaries,
+//! treated as square-root ends (the panels beside them in t, c = end ± (b − a) t²); in u,
+//! θh = acos η (η < 1), where the first and the last cross. Each integral is nested
+//! Clenshaw–Curtis per panel, adaptive Gauss–Kronrod where that fails
+//! ([`crate::quadrature::cc1d::cc_or_adaptive`]).
+//!
+//! **Sharing.** J_r does not depend on η; the η ≥ 1 slices have the same ψ-ranges and
+//! c-breakpoints, so up to N of them are the channels of one rule, sharing every node and
+//! J_r. (An η < 1 slice goes alone: its breakpoints are its own.)
+//!
+//! **Error.** Outer rule: half the tolerance. The outer integrand's weight integrates to
+//! `(1/π)∫D dω_h ≤ 1/π + α/2` (∫D dω_h = 2α²∫ x√(1 + x²)/(α² + x²)² dx ≤ 1 + πα/2 with
+//! √(1 + x²) ≤ 1 + x, x = tan θh), so Φ is wanted to `tol/4/(1/π + α/2)`: half for its
+//! c-rule, half for the J's (2∫₀¹ c dc = 1 carries a J error into Φ unchanged). The reported
+//! estimate is the outer rule's plus that weight times the largest Φ estimate. The u-range
+//! ends where the weight's tail, ≤ 8α e^(−U) + 8 e^(−2U) times Φ ≤ π (∫ c dω_v = π), is
+//! below 1e-3 of the tolerance.
+
+use super::micro_normals::{panels, Breaks};
+use crate::model::btdf::SmithForm;
+use crate::model::fresnel::dielectric;
+use crate::model::Ndf;
+use crate::quadrature::cc1d::Estimator;
+use crate::quadrature::{Estimate, Tolerance};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Finest nested Clenshaw–Curtis level per panel: 65 nodes in each variable.
+const OUTER_LEVEL: usize = 6;
+const MIDDLE_LEVEL: usize = 6;
+const INNER_LEVEL: usize = 6;
+
+/// Below this α the layers where G1 drops to 0 (over n·l ~ α at a horizon) hold less
+/// than ~α ≤ 1e-6 of any J and get no panel ends of their own.
+const LAYER_ALPHA: f64 = 1e-6;
+
+/// Panel ends in ψ where the distance `d` of a direction to its horizon (0 at the range end
+/// `end`) is α·4^k, k = 0, 1, …, while it is below `span` (the largest distance on the
+/// panel); `psi_of(d)` gives ψ. The masking G1(d) = 2d/(d + √(α² + (1 − α²)d²)) varies on
+/// the scale α there, far below the panel's length for narrow lobes.
+fn layer(br: &mut Breaks, alpha: f64, span: f64, psi_of: impl Fn(f64) -> f64, lo: f64, hi: f64) {
+    if alpha < LAYER_ALPHA {
+        return;
+    }
+    let mut d = alpha;
+    while d < 0.5 * span {
+        let p = psi_of(d);
+        if p > lo && p < hi {
+            br.push(p, false);
+        }
+        d *= 4.0;
+    }
+}
+
+/// A tolerance for [`panels`] whose integrand is known to ±`noise` per unit length.
+fn tolerance(abs: f64, noise: f64) -> Tolerance {
+    Tolerance {
+        abs,
+        initial_panels: 2,
+        max_depth: 40,
+        noise_floor: 4.0 * noise,
+        max_evals: 100_000,
+    }
+}
+
+/// E_avg of each relative index in `etas` (all ≥ 1, up to N; or a single one below 1) for
+/// the GGX NDF `ndf` with masking `smith`, to absolute tolerance `tol` each: channel k is
+/// `etas[k]`'s (channels beyond `etas.len()` are 0). `evals` counts the ψ nodes.
+pub fn average_albedo<const N: usize>(
+    ndf: &Ndf,
+    smith: SmithForm,
+    etas: &[f64],
+    tol: f64,
+) -> Estimate<N> {
+    debug_assert!(etas.len() <= N);
+    debug_assert!(etas.len() == 1 || etas.iter().all(|&e| e >= 1.0));
+    let alpha = ndf.alpha();
+    let below = etas.iter().copied().find(|&e| e < 1.0);
+    // ∫₀¹ (2/π) √(s² + α²(1 − s²)) ds ≤ (2/π) max(1, α)
+    let weight_total = 2.0 / PI * alpha.max(1.0);
+    let phi_tol = 0.25 * tol / weight_total;
+    let j_tol = 0.5 * phi_tol;
+    let evals = std::cell::Cell::new(0u64);
+    let phi_err = std::cell::Cell::new([0.0f64; N]);
+    let j_err = std::cell::Cell::new(0.0f64);
+    // per unit length of the outer variable: the outer integrand's noise from Φ's
+    let outer_noise = weight_total * phi_tol;
+    // Φ(θh) per index
+    let phi_of = |cos_h: f64, sin_h: f64| -> [f64; N] {
+        // the inner integrands at one c: the range ends and G per direction
+        let g = |nv: f64, nl: f64| smith.g(ndf.g1(nv.min(1.0)), ndf.g1(nl.min(1.0)));
+        let middle = |c: f64| -> [f64; N] {
+            let mut out = [0.0; N];
+            let s2 = (1.0 - c) * (1.0 + c);
+            let s = s2.max(0.0).sqrt();
+            let (a, b) = (c * cos_h, s * sin_h);
+            // J_r: 2∫ over [ψ_r, π/2] (symmetric about π/2)
+            let psi_r = if a >= b { 0.0 } else { (a / b).acos() };
+            let jr = {
+                let mut br = Breaks::new();
+                br.push(psi_r, false);
+                br.push(FRAC_PI_2, false);
+                // G1 drops to 0 over n.l ~ alpha at the horizon (psi_r, where
+                // n.l_r = a - b cos psi = 0): panel ends at n.l_r = alpha 4^k
+                if psi_r > 0.0 {
+                    layer(
+                        &mut br,
+                        alpha,
+                        a,
+                        |d| ((a - d) / b).acos(),
+                        psi_r,
+                        FRAC_PI_2,
+                    );
+                }
+                let e = panels(
+                    |psi: f64| {
+                        let bc = b * psi.cos();
+                        [g(a + bc, a - bc)]
+                    },
+                    br,
+                    tolerance(0.5 * j_tol, 0.0),
+                    INNER_LEVEL,
+                    Estimator::Tail,
+                );
+                evals.set(evals.get() + e.evals);
+                j_err.set(j_err.get().max(2.0 * e.error[0]));
+                2.0 * e.value[0]
+            };
+            // J_t per index: the same range for every η ≥ 1 (m = a there)
+            let mut jt = [0.0; N];
+            let mut refr = [None; N];
+            for (o, &eta) in refr.iter_mut().zip(etas) {
+                let r = s2 / (eta * eta);
+                *o = (r < 1.0).then(|| (1.0 - r).sqrt());
+            }
+            if refr.iter().any(Option::is_some) {
+                let m = match (below, refr.first().copied().flatten()) {
+                    (Some(eta), Some(ct)) => c.min(eta * ct) * cos_h,
+                    _ => a,
+                };
+                let psi_t = if m >= b { PI } else { (-m / b).acos() };
+                let mut br = Breaks::new();
+                br.push(0.0, false);
+                br.push(psi_t, false);
+                // the horizon at psi_t, where n.v = a + b cos psi falls to
+                // m' = max(0, (c - eta cos theta_t) cos theta_h) (n.v = 0 binds for eta >= 1,
+                // n.l_t = 0 for eta < 1 where m' > 0): its layer, in units of n.v
+                if psi_t < PI {
+                    let lo = a - m;
+                    layer(
+                        &mut br,
+                        alpha,
+                        a + b - lo,
+                        |d| ((lo + d - a) / b).acos(),
+                        0.0,
+                        psi_t,
+                    );
+                }
+                let e = panels(
+                    |psi: f64| {
+                        let nv = a + b * psi.cos();
+                        let mut y = [0.0; N];
+                        for (k, (&eta, ct)) in etas.iter().zip(&refr).enumerate() {
+                            if let Some(ct) = ct {
+                                let nlt = (c / eta - ct) * cos_h - nv / eta;
+                                if nlt < 0.0 {
+                                    y[k] = g(nv, -nlt);
+                                }
+                            }
+                        }
+                        y
+                    },
+                    br,
+                    tolerance(j_tol, 0.0),
+                    INNER_LEVEL,
+                    Estimator::Tail,
+                );
+                evals.set(evals.get() + e.evals);
+                j_err.set(
+                    j_err
+                        .get()
+                        .max(e.error.iter().fold(0.0, |m: f64, &x| m.max(x))),
+                );
+                jt = e.value;
+            }
+            for (k, &eta) in etas.iter().enumerate() {
+                let f = dielectric(c, eta);
+                out[k] = 2.0 * c * (f * jr + (1.0 - f) * jt[k]);
+            }
+            out
+        };
+        let mut br = Breaks::new();
+        br.push(0.0, false);
+        br.push(1.0, false);
+        let mut inside = |x: f64| {
+            if x > 0.0 && x < 1.0 {
+                br.push(x, true);
+            }
+        };
+        inside(sin_h);
+        // where c ~ alpha both directions graze (theta_h small): G's layer in c
+        let mut k = alpha;
+        while k < 0.5 && k > LAYER_ALPHA {
+            inside(k);
+            k *= 4.0;
+        }
+        if let Some(eta) = below {
+            inside(((1.0 - eta) * (1.0 + eta)).sqrt());
+            inside((1.0 - eta * eta * cos_h * cos_h).max(0.0).sqrt());
+        }
+        let e = panels(
+            middle,
+            br,
+            tolerance(0.5 * phi_tol, j_tol),
+            MIDDLE_LEVEL,
+            Estimator::Tail,
+        );
+        let mut pe = phi_err.get();
+        for (m, &x) in pe.iter_mut().zip(&e.error) {
+            *m = m.max(x);
+        }
+        phi_err.set(pe);
+        e.value
+    };
+    let outer = |s: f64| -> [f64; N] {
+        // tan θh = α √(1 − s²)/s; w = √(s² + α²(1 − s²)) = s/cos θh
+        let c2 = (1.0 - s) * (1.0 + s);
+        let w = (s * s + alpha * alpha * c2).sqrt();
+        let (cos_h, sin_h) = if w > 0.0 {
+            (s / w, alpha * c2.sqrt() / w)
+        } else {
+            (0.0, 1.0)
+        };
+        let mut y = phi_of(cos_h, sin_h);
+        for v in y.iter_mut() {
+            *v *= 2.0 / PI * w;
+        }
+        y
+    };
+    let mut br = Breaks::new();
+    br.push(0.0, false);
+    br.push(1.0, false);
+    // for narrow lobes the weight turns from α to s around s ~ α (θh ~ 45°): panel ends at
+    // α 4^k
+    let mut x = alpha;
+    while x < 0.5 {
+        br.push(x, false);
+        x *= 4.0;
+    }
+    if let Some(eta) = below {
+        // θh = acos η: tan θh = √(1 − η²)/η
+        let x = alpha * eta / ((1.0 - eta) * (1.0 + eta) + alpha * alpha * eta * eta).sqrt();
+        if x > 0.0 && x < 1.0 {
+            br.push(x, false);
+        }
+    }
+    let e = panels(
+        outer,
+        br,
+        tolerance(0.5 * tol, outer_noise),
+        OUTER_LEVEL,
+        Estimator::Tail,
+    );
+    let pe = phi_err.get();
+    let je = j_err.get();
+    Estimate {
+        value: e.value,
+        error: std::array::from_fn(|k| e.error[k] + weight_total * (pe[k] + je)),
+        evals: evals.get(),
+    }
+}

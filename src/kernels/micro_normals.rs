@@ -1,0 +1,431 @@
+//! Integrals over the micro-normals h of a GGX surface seen from a view v: the nested rule
+//! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`) and of the `karis-f82`
+//! dfg channel, whose integrands are all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
+//! with kinks only where this rule puts panel boundaries ([`integrate_micro_normals`]).
+//!
+//! The integrals run over the micro-normal h in the hemisphere about n, with v in the
+//! xz-plane and φ ∈ [0, π] doubled by symmetry; the inner variable is the lobe warp
+//! u = asinh(tan θh/α) of `hemisphere.rs`. The inner range ends where v·h = 0
+//! (tan θh = n·v/(sin θv (−cos φ)) for cos φ < 0) or, where h reaches the equator with
+//! v·h > 0, at u = 30 or beyond where a grazing view or a tight tolerance needs it
+//! (`u_cap`: the tail left out is below 1e-3 of the tolerance).
+//!
+//! **Kinks are panel boundaries, in both variables.** Inside a panel the integrand is
+//! smooth, so every panel is first integrated by nested Clenshaw–Curtis
+//! ([`crate::quadrature::cc1d`], 9 to 129 nodes, geometric convergence) and only where its
+//! estimate does not reach the panel's share of the tolerance by adaptive Gauss–Kronrod.
+//! The inner (u) boundaries at a given φ:
+//!
+//! * the reflected direction's horizon n·l_r = 0 (tan θh = `tan_theta_h_max`);
+//! * for η < 1, the critical angle v·h = c = √(1 − η²), where F has a square-root kink:
+//!   v·h = A cos(θh − ψ), A = √((n·v)² + sin²θv cos²φ), tan ψ = sin θv cos φ/(n·v), so
+//!   θh = ψ ± arccos(c/A); those panels are integrated in t with u = end ± (b − a) t²;
+//! * for η < 1, the transmitted direction's horizon n·l_t = 0, in closed form: the
+//!   refraction l_t = (c/η − cos θt) h − v/η (Walter eq. 40) gives v + η l_t = (c − η cos θt) h,
+//!   and c > η cos θt whenever η < 1, so h = s/|s| with s = v + η l_t. For a horizontal
+//!   l_t = (cos β, sin β, 0), s = (sin θv + η cos β, η sin β, n·v): the projections of
+//!   these h onto the plane z = n·v lie on the circle of radius η about (sin θv, 0). The ray
+//!   at azimuth φ meets it at ρ = sin θv cos φ ± √(η² − sin²θv sin²φ), tan θh = ρ/(n·v), and
+//!   the point is a refraction (not total internal reflection, l_t·h < 0) iff
+//!   v·l_t = sin θv (ρ cos φ − sin θv)/η < −η. For η ≥ 1, c < η cos θt always, h would be
+//!   ∝ −s with n·h = −n·v < 0: no transmitted direction reaches the horizon before the
+//!   equator.
+//!
+//! The outer (φ) boundaries are where the inner boundaries appear, vanish or cross, each a
+//! kink of the inner integral as a function of φ: π/2 (v·h = 0 reaches the equator) and, for
+//! η < 1, (i) where the line of azimuth φ touches the critical cone, A(φ) = c, which is also
+//! where the transmitted horizon's circle is tangent to that line (sin φ = η/sin θv) and so
+//! where its crossing ends; a square-root kink, integrated in t as above; (ii) where the
+//! critical cone crosses the reflected horizon, l_r horizontal with v·l_r = 2c² − 1:
+//! sin θv cos β = 2c² − 1, φ = atan2(sin β, sin θv + cos β); (iii) where it crosses the
+//! equator, h = (cos φ, sin φ, 0): cos φ = c/sin θv.
+
+use crate::hemisphere::{nested_tolerances, tan_theta_h_max};
+use crate::model::btdf::MicroNormal;
+use crate::model::Ndf;
+use crate::quadrature::cc1d::{cc_or_adaptive_with, Estimator};
+use crate::quadrature::{Estimate, Tolerance};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Upper end of the warped inner variable where the range is not cut by v·h = 0.
+const U_CAP: f64 = 30.0;
+
+/// Finest nested Clenshaw–Curtis level of an inner (u) panel (129 nodes) and of an outer
+/// (φ) panel, whose nodes are inner integrals (65 nodes).
+const INNER_LEVEL: usize = 7;
+const OUTER_LEVEL: usize = 6;
+
+/// A panel boundary; `singular` marks a square-root kink there (the critical angle), which
+/// the panels on either side remove by the substitution x = end ± (b − a) t².
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Break {
+    pub x: f64,
+    pub singular: bool,
+}
+
+/// ∫ₐᵇ f over one panel to absolute tolerance `tol` ([`cc_or_adaptive`] up to `level`). A
+/// square-root behaviour f ~ √(x − a) at a singular end becomes smooth under
+/// x = a + (b − a) t², dx = 2(b − a) t dt (likewise at b); with both ends singular the panel
+/// is halved first. Without it the rule would converge only algebraically towards the kink.
+fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
+    f: &mut F,
+    a: Break,
+    b: Break,
+    tol: Tolerance,
+    level: usize,
+    est: Estimator,
+) -> Estimate<N> {
+    let (x0, x1) = (a.x, b.x);
+    let w = x1 - x0;
+    match (a.singular, b.singular) {
+        (false, false) => cc_or_adaptive_with(&mut *f, x0, x1, tol, level, est),
+        (true, false) => cc_or_adaptive_with(
+            |t: f64| {
+                let mut y = f(x0 + w * t * t);
+                y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
+                y
+            },
+            0.0,
+            1.0,
+            tol,
+            level,
+            est,
+        ),
+        (false, true) => cc_or_adaptive_with(
+            |t: f64| {
+                let mut y = f(x1 - w * t * t);
+                y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
+                y
+            },
+            0.0,
+            1.0,
+            tol,
+            level,
+            est,
+        ),
+        (true, true) => {
+            let m = Break {
+                x: 0.5 * (x0 + x1),
+                singular: false,
+            };
+            let half = Tolerance {
+                abs: 0.5 * tol.abs,
+                ..tol
+            };
+            let mut e = panel(f, a, m, half, level, est);
+            let r = panel(f, m, b, half, level, est);
+            for c in 0..N {
+                e.value[c] += r.value[c];
+                e.error[c] += r.error[c];
+            }
+            e.evals += r.evals;
+            e
+        }
+    }
+}
+
+/// Most breakpoints of one integral: in u, 0, the end, the reflected horizon, one spare
+/// and 3 per η (two critical-angle crossings, the transmitted horizon); in φ, 0, π, π/2 and
+/// 4 per η ([`phi_breaks`]); for up to [`MAX_ETAS`] indices.
+const MAX_BREAKS: usize = 4 + 4 * MAX_ETAS;
+
+/// Most relative indices whose kinks one integral takes ([`integrate_micro_normals`]).
+pub const MAX_ETAS: usize = 8;
+
+/// The breakpoints of one integral in a fixed-size buffer on the stack (this runs once per
+/// φ node: a growing `Vec` here cost ~8% of the bake in `realloc`).
+#[derive(Clone, Copy)]
+pub(crate) struct Breaks {
+    b: [Break; MAX_BREAKS],
+    len: usize,
+}
+
+impl Breaks {
+    pub fn new() -> Breaks {
+        Breaks {
+            b: [Break {
+                x: 0.0,
+                singular: false,
+            }; MAX_BREAKS],
+            len: 0,
+        }
+    }
+
+    pub fn push(&mut self, x: f64, singular: bool) {
+        assert!(self.len < MAX_BREAKS, "more than {MAX_BREAKS} breakpoints");
+        self.b[self.len] = Break { x, singular };
+        self.len += 1;
+    }
+
+    /// Sorted by x (insertion sort: stable, no allocation, ≤ [`MAX_BREAKS`] entries).
+    fn sorted(mut self) -> Breaks {
+        for i in 1..self.len {
+            let mut j = i;
+            while j > 0 && self.b[j - 1].x > self.b[j].x {
+                self.b.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+        self
+    }
+
+    fn as_slice(&self) -> &[Break] {
+        &self.b[..self.len]
+    }
+}
+
+/// Integrates over the panels between the breakpoints. `tol.abs` is shared half by
+/// length and half equally among the n non-empty panels (shares sum to `tol.abs`): by
+/// length alone a short panel next to a kink, or the lobe's panel in front of the long
+/// exponential tail up to u = 30, would get a tiny share and need the finest rule for
+/// nothing.
+pub(crate) fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
+    mut f: F,
+    breaks: Breaks,
+    tol: Tolerance,
+    level: usize,
+    est: Estimator,
+) -> Estimate<N> {
+    let sorted = breaks.sorted();
+    let breaks = sorted.as_slice();
+    let span = breaks.last().map_or(0.0, |l| l.x) - breaks.first().map_or(0.0, |f| f.x);
+    let mut total = Estimate::<N>::zero();
+    if span <= 0.0 {
+        return total;
+    }
+    let n = breaks.windows(2).filter(|w| w[1].x > w[0].x).count() as f64;
+    for w in breaks.windows(2) {
+        if w[1].x <= w[0].x {
+            continue;
+        }
+        let e = panel(
+            &mut f,
+            w[0],
+            w[1],
+            Tolerance {
+                abs: tol.abs * 0.5 * ((w[1].x - w[0].x) / span + 1.0 / n),
+                ..tol
+            },
+            level,
+            est,
+        );
+        for c in 0..N {
+            total.value[c] += e.value[c];
+            total.error[c] += e.error[c];
+        }
+        total.evals += e.evals;
+    }
+    total
+}
+
+/// tan θh of the micro-normal at azimuth φ (`cos_phi`, `sin_phi` ≥ 0) whose refracted
+/// direction is horizontal, n·l_t = 0, if there is one (η < 1; module docs).
+pub fn transmitted_horizon(
+    eta: f64,
+    mu: f64,
+    sin_v: f64,
+    cos_phi: f64,
+    sin_phi: f64,
+) -> Option<f64> {
+    let disc = eta * eta - sin_v * sin_v * sin_phi * sin_phi;
+    if eta >= 1.0 || disc < 0.0 || mu <= 0.0 {
+        return None;
+    }
+    let q = disc.sqrt();
+    [sin_v * cos_phi - q, sin_v * cos_phi + q]
+        .into_iter()
+        .find(|&rho| rho > 0.0 && sin_v * (rho * cos_phi - sin_v) < -eta * eta)
+        .map(|rho| rho / mu)
+}
+
+/// The azimuths in (0, π) where the inner integral of `reflect_transmit` has a kink
+/// (module docs), with whether it is a square-root kink; π/2 first.
+pub fn phi_breaks(eta: f64, mu: f64) -> Vec<(f64, bool)> {
+    let mu = mu.min(1.0);
+    let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
+    let mut out = vec![(FRAC_PI_2, false)];
+    if eta >= 1.0 || sin_v <= 0.0 {
+        return out;
+    }
+    let c = (1.0 - eta * eta).sqrt();
+    let mut push = |p: f64, singular: bool| {
+        if p > 0.0 && p < PI && (p - FRAC_PI_2).abs() > 1e-12 {
+            out.push((p, singular));
+        }
+    };
+    // (i) A(φ) = c: the critical cone touches the line of azimuth φ
+    if c > mu {
+        let x = ((c * c - mu * mu).sqrt() / sin_v).min(1.0);
+        push(x.acos(), true);
+        push(PI - x.acos(), true);
+    }
+    // (ii) the critical cone meets the reflected horizon
+    let cb = (2.0 * c * c - 1.0) / sin_v;
+    if cb.abs() < 1.0 {
+        push((1.0 - cb * cb).sqrt().atan2(sin_v + cb), false);
+    }
+    // (iii) the critical cone meets the equator
+    if c < sin_v {
+        push((c / sin_v).acos(), false);
+    }
+    out
+}
+
+/// The end of the warped inner variable u = asinh(tan θh/α) where the range is not cut by
+/// v·h = 0: [`U_CAP`], or further where a grazing view or a tight tolerance needs it. Every
+/// integrand of this module is bounded by the visible-normal measure
+/// D G1(v) c/(n·v) dω_h ≤ D dω_h/(n·v). For GGX with x = tan θh, D dω_h =
+/// 2α² x √(1 + x²)/(α² + x²)² dx over the azimuth, and with √(1 + x²) ≤ 1 + x the part
+/// beyond x = T = α sinh u is at most α²/(α² + T²) + 2α atan(α/T) = 1/cosh²u +
+/// 2α atan(1/sinh u) ≤ (4 + 4.01 α) e^(−u) for u ≥ 4. So the part left out is below
+/// 1e-3·`tol` once u ≥ ln((4 + 4.01 α)/(1e-3·tol·n·v)). (For the default tolerances, α ≤ 1
+/// and views ≥ 1e-3 that is below 30, which stays the end: those tables keep their bits.)
+fn u_cap(alpha: f64, mu: f64, tol: f64) -> f64 {
+    let need = ((4.0 + 4.01 * alpha) / (1e-3 * tol * mu)).ln();
+    if need.is_finite() {
+        U_CAP.max(need)
+    } else {
+        U_CAP
+    }
+}
+
+/// What [`integrate_micro_normals`] puts panel boundaries at, and how its panels estimate
+/// their error.
+#[derive(Clone, Copy, Debug)]
+pub struct Rule<'a> {
+    /// The relative indices whose kinks (η < 1: the critical angle, the transmitted
+    /// direction's horizon) the integrand has (at most [`MAX_ETAS`]).
+    pub etas: &'a [f64],
+    /// The error estimate of every panel's nested Clenshaw–Curtis rule.
+    pub estimator: Estimator,
+}
+
+impl<'a> Rule<'a> {
+    /// The kinks of `etas`, the standard estimate (`dielectric-btdf`).
+    pub fn standard(etas: &'a [f64]) -> Rule<'a> {
+        Rule {
+            etas,
+            estimator: Estimator::Standard,
+        }
+    }
+}
+
+/// `∫ g(h) dω_h` over the micro-normals h of the upper hemisphere with v·h > 0, for a view
+/// with n·v = `mu`, to absolute tolerance `tol` per channel: the nested rule of the module
+/// docs. `g` is the integrand per unit solid angle of h (given n·h, sin²θh and v·h); it may
+/// have kinks only where this rule puts panel boundaries: the reflected direction's horizon
+/// and, for every relative index in `etas` below 1, the critical angle and the transmitted
+/// direction's horizon (indices ≥ 1 add none). `evals` counts the inner nodes.
+pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
+    ndf: &Ndf,
+    rule: Rule,
+    mu: f64,
+    tol: f64,
+    g: G,
+) -> Estimate<N> {
+    let Rule { etas, estimator } = rule;
+    let mu = mu.min(1.0);
+    let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
+    let tan_v = sin_v / mu;
+    let alpha = ndf.alpha();
+    let cap = u_cap(alpha, mu, tol);
+    // budget as in `hemisphere::integrate_over_l`: half outer, half inner; the outer
+    // integral over [0, π] is doubled by symmetry, so it gets half the outer share
+    let (inner_tol, outer_whole) = nested_tolerances(tol);
+    let outer_tol = Tolerance {
+        abs: outer_whole.abs / 2.0,
+        ..outer_whole
+    };
+    // per channel: the largest inner estimate over the φ nodes
+    let inner_err = std::cell::Cell::new([0.0f64; N]);
+    let inner_evals = std::cell::Cell::new(0u64);
+    let to_u = |t: f64| (t / alpha).asinh().min(cap);
+    let phi_integrand = |phi: f64| -> [f64; N] {
+        let (sp, cp) = phi.sin_cos();
+        let u_end = if cp < 0.0 && sin_v > 0.0 {
+            to_u(mu / (sin_v * -cp))
+        } else {
+            cap
+        };
+        let mut breaks = Breaks::new();
+        breaks.push(0.0, false);
+        breaks.push(u_end, false);
+        let mut inside = |u: f64, singular: bool| {
+            if u > 0.0 && u < u_end {
+                breaks.push(u, singular);
+            }
+        };
+        inside(to_u(tan_theta_h_max(tan_v, cp)), false);
+        for &eta in etas.iter().filter(|&&eta| eta < 1.0) {
+            let c = (1.0 - eta * eta).sqrt();
+            let a = (mu * mu + sin_v * sin_v * cp * cp).sqrt();
+            if c < a {
+                let psi = (sin_v * cp).atan2(mu);
+                let d = (c / a).acos();
+                for th in [psi - d, psi + d] {
+                    if th > 0.0 && th < FRAC_PI_2 {
+                        inside(to_u(th.tan()), true);
+                    }
+                }
+            }
+            // the transmitted direction's horizon (a kink: T's G1 vanishes linearly there)
+            if let Some(t) = transmitted_horizon(eta, mu, sin_v, cp, sp) {
+                inside(to_u(t), false);
+            }
+        }
+        let e = panels(
+            |u: f64| {
+                // sinh u and cosh u from one exp_m1 (u ≥ 0; no cancellation: sinh u =
+                // (e + e/(1 + e))/2 with e = eᵘ − 1)
+                let e = u.exp_m1();
+                let inv = 1.0 / (1.0 + e);
+                let (sinh_u, cosh_u) = (0.5 * (e + e * inv), 0.5 * (1.0 + e + inv));
+                let t = alpha * sinh_u;
+                let c2 = 1.0 / (1.0 + t * t);
+                let cos_h = c2.sqrt();
+                let sin_h = t * cos_h;
+                let h = MicroNormal {
+                    n_dot_h: cos_h,
+                    sin2_h: sin_h * sin_h,
+                    v_dot_h: sin_v * sin_h * cp + mu * cos_h,
+                };
+                // dω_h = sin θh dθh dφ, dθh/du = α cosh u cos²θh
+                let jac = sin_h * alpha * cosh_u * c2;
+                let mut y = g(&h);
+                for v in y.iter_mut() {
+                    *v *= jac;
+                }
+                y
+            },
+            breaks,
+            inner_tol,
+            INNER_LEVEL,
+            estimator,
+        );
+        let mut ie = inner_err.get();
+        for (m, &x) in ie.iter_mut().zip(&e.error) {
+            *m = m.max(x);
+        }
+        inner_err.set(ie);
+        inner_evals.set(inner_evals.get() + e.evals);
+        e.value
+    };
+    let mut breaks = Breaks::new();
+    breaks.push(0.0, false);
+    breaks.push(PI, false);
+    breaks.push(FRAC_PI_2, false);
+    for &eta in etas {
+        // (π/2, every index's first break, once)
+        for (x, singular) in phi_breaks(eta, mu).into_iter().skip(1) {
+            breaks.push(x, singular);
+        }
+    }
+    let e = panels(phi_integrand, breaks, outer_tol, OUTER_LEVEL, estimator);
+    let inner_err = inner_err.get();
+    Estimate {
+        value: e.value.map(|v| 2.0 * v),
+        // inner errors integrate over φ ∈ [0, π], doubled
+        error: std::array::from_fn(|c| 2.0 * e.error[c] + 2.0 * PI * inner_err[c]),
+        evals: inner_evals.get(),
+    }
+}
