@@ -147,16 +147,7 @@ const INV_POW2: [f64; MAX_LOG2 + 1] = {
 
 /// Where each level's new trapezoid nodes start in [`NodeTables`]' order: level 0 is the
 /// two ends (N = 1), level l ≥ 1 the 2^(l−1) midpoints that N = 2^l adds.
-const LEVEL_START: [usize; MAX_LOG2 + 2] = {
-    let mut t = [0; MAX_LOG2 + 2];
-    t[1] = 2;
-    let mut l = 1;
-    while l <= MAX_LOG2 {
-        t[l + 1] = t[l] + (1 << (l - 1));
-        l += 1;
-    }
-    t
-};
+const LEVEL_START: [usize; MAX_LOG2 + 2] = crate::quadrature::trapezoid::level_starts();
 
 /// The trapezoid nodes ϑ = kπ/64 (k = 0..=64) in the order of their levels — k = 0, 64;
 /// 32; 16, 48; 8, 24, 40, 56; … (increasing within a level, the order in which the sums

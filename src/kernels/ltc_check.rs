@@ -52,17 +52,7 @@ impl Lcg {
     }
 }
 
-fn cross(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
-    [
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    ]
-}
-
-fn dot(p: [f64; 3], q: [f64; 3]) -> f64 {
-    p[0] * q[0] + p[1] * q[1] + p[2] * q[2]
-}
+use crate::numerics::vec3::{cross, dot};
 
 fn unit(p: [f64; 3]) -> [f64; 3] {
     let l = dot(p, p).sqrt();

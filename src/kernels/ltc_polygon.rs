@@ -32,19 +32,7 @@
 use crate::model::ltc::{Ltc, LtcError};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-#[inline]
-fn cross(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
-    [
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    ]
-}
-
-#[inline]
-fn dot(p: [f64; 3], q: [f64; 3]) -> f64 {
-    p[0] * q[0] + p[1] * q[1] + p[2] * q[2]
-}
+use crate::numerics::vec3::{cross, dot};
 
 /// One edge's term of the vector form factor, `θ·(p × q)/|p × q|` (not divided by 2π):
 /// the integral of the (unclamped) direction vector ω over the sector spanned by the edge

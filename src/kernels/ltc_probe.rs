@@ -21,19 +21,7 @@ use crate::model::ltc::Ltc;
 use crate::quadrature::gauss::gauss_legendre;
 use std::f64::consts::PI;
 
-#[inline]
-fn cross(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
-    [
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    ]
-}
-
-#[inline]
-fn dot(p: [f64; 3], q: [f64; 3]) -> f64 {
-    p[0] * q[0] + p[1] * q[1] + p[2] * q[2]
-}
+use crate::numerics::vec3::{cross, dot};
 
 fn dir(el_deg: f64, az_deg: f64) -> [f64; 3] {
     let (e, a) = (el_deg.to_radians(), az_deg.to_radians());

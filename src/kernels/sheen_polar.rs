@@ -84,16 +84,7 @@ const MOBIUS_BELOW: f64 = 0.5;
 
 /// Where each level's nodes start in [`NodeTables`]' order: level 0 is the two ends (N = 1),
 /// level l ≥ 1 the 2^(l−1) midpoints that N = 2^l adds.
-const LEVEL_START: [usize; MAX_LOG2 + 2] = {
-    let mut t = [0; MAX_LOG2 + 2];
-    t[1] = 2;
-    let mut l = 1;
-    while l <= MAX_LOG2 {
-        t[l + 1] = t[l] + (1 << (l - 1));
-        l += 1;
-    }
-    t
-};
+const LEVEL_START: [usize; MAX_LOG2 + 2] = crate::quadrature::trapezoid::level_starts();
 
 /// The trapezoid nodes τ = kπ/256 in the order of their levels (k = 0, 256; 128; 64, 192;
 /// …), as `1 − cos τ = 2 sin²(τ/2)` and `1 + cos τ = 2 cos²(τ/2)` (each accurate where it

@@ -2,5 +2,6 @@
 //! the kernels may use.
 
 pub mod poly;
+pub mod vec3;
 
 pub use poly::{exp_poly, sin_cos_taylor};

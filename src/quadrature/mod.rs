@@ -11,5 +11,6 @@ pub mod chebyshev;
 pub mod clenshaw_curtis;
 pub mod gauss;
 pub mod interp1d;
+pub mod trapezoid;
 
 pub use adaptive::{integrate, integrate1, Estimate, Tolerance};
