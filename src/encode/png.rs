@@ -319,36 +319,57 @@ impl PngPreview {
     }
 
     fn write(&self, image: &Image) -> Result<Vec<u8>, EncodeError> {
-        let png_error = |e: ::png::EncodingError| self.error(format!("PNG encoding failed: {e}"));
-        let mut bytes = Vec::new();
-        let mut encoder = ::png::Encoder::new(&mut bytes, image.width as u32, image.height as u32);
-        encoder.set_color(image.color);
-        encoder.set_depth(BitDepth::Sixteen);
-        encoder.set_deflate_compression(DeflateCompression::Level(9));
-        encoder.set_filter(Filter::Adaptive);
-        let mut keywords: Vec<String> = Vec::with_capacity(image.text.len());
-        for (key, value) in &image.text {
-            let keyword = text_keyword(key)?;
-            if keywords.contains(&keyword) {
-                return Err(EncodeError::Attribute {
-                    key: key.clone(),
-                    reason: format!("the PNG text keyword `{keyword}` is used twice"),
-                });
-            }
-            keywords.push(keyword.clone());
-            if value.is_ascii() {
-                encoder.add_text_chunk(keyword, value.clone())
-            } else {
-                encoder.add_itxt_chunk(keyword, value.clone())
-            }
-            .map_err(png_error)?;
-        }
-        let mut writer = encoder.write_header().map_err(png_error)?;
         let data: Vec<u8> = image.samples.iter().flat_map(|s| s.to_be_bytes()).collect();
-        writer.write_image_data(&data).map_err(png_error)?;
-        writer.finish().map_err(png_error)?;
-        Ok(bytes)
+        let size = (image.width as u32, image.height as u32);
+        write_png(
+            size,
+            image.color,
+            BitDepth::Sixteen,
+            &image.text,
+            &data,
+            &|e| self.error(format!("PNG encoding failed: {e}")),
+        )
     }
+}
+
+/// A PNG as both PNG writers make it: `data` the rows in PNG byte order, deflate level 9,
+/// adaptive filters, `text` as tEXt chunks (ASCII) or iTXt chunks, each keyword once (a
+/// repeated one is an error naming it).
+pub(crate) fn write_png(
+    (width, height): (u32, u32),
+    color: ColorType,
+    depth: BitDepth,
+    text: &[(String, String)],
+    data: &[u8],
+    png_error: &dyn Fn(::png::EncodingError) -> EncodeError,
+) -> Result<Vec<u8>, EncodeError> {
+    let mut bytes = Vec::new();
+    let mut encoder = ::png::Encoder::new(&mut bytes, width, height);
+    encoder.set_color(color);
+    encoder.set_depth(depth);
+    encoder.set_deflate_compression(DeflateCompression::Level(9));
+    encoder.set_filter(Filter::Adaptive);
+    let mut keywords: Vec<String> = Vec::with_capacity(text.len());
+    for (key, value) in text {
+        let keyword = text_keyword(key)?;
+        if keywords.contains(&keyword) {
+            return Err(EncodeError::Attribute {
+                key: key.clone(),
+                reason: format!("the PNG text keyword `{keyword}` is used twice"),
+            });
+        }
+        keywords.push(keyword.clone());
+        if value.is_ascii() {
+            encoder.add_text_chunk(keyword, value.clone())
+        } else {
+            encoder.add_itxt_chunk(keyword, value.clone())
+        }
+        .map_err(png_error)?;
+    }
+    let mut writer = encoder.write_header().map_err(png_error)?;
+    writer.write_image_data(data).map_err(png_error)?;
+    writer.finish().map_err(png_error)?;
+    Ok(bytes)
 }
 
 /// The false-colour image of the first channel, with the attributes as text chunks.

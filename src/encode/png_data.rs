@@ -21,11 +21,11 @@
 //!
 //! Determinism: fixed deflate level and filter choice, as the previews.
 
-use super::png::text_keyword;
+use super::png::write_png;
 use super::{EncodeError, Encoder};
 use crate::lut::Lut;
 use crate::table::Storage;
-use ::png::{BitDepth, ColorType, DeflateCompression, Filter};
+use ::png::{BitDepth, ColorType};
 
 /// Encodes a UNORM table's texels as a PNG image (see the module documentation).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -137,33 +137,8 @@ impl Encoder for PngData {
         ];
         text.extend(attributes.iter().cloned());
 
-        let png_error = |e: ::png::EncodingError| shape(format!("PNG encoding failed: {e}"));
-        let mut out = Vec::new();
-        let mut encoder = ::png::Encoder::new(&mut out, w as u32, h as u32);
-        encoder.set_color(color);
-        encoder.set_depth(depth);
-        encoder.set_deflate_compression(DeflateCompression::Level(9));
-        encoder.set_filter(Filter::Adaptive);
-        let mut keywords: Vec<String> = Vec::with_capacity(text.len());
-        for (key, value) in &text {
-            let keyword = text_keyword(key)?;
-            if keywords.contains(&keyword) {
-                return Err(EncodeError::Attribute {
-                    key: key.clone(),
-                    reason: format!("the PNG text keyword `{keyword}` is used twice"),
-                });
-            }
-            keywords.push(keyword.clone());
-            if value.is_ascii() {
-                encoder.add_text_chunk(keyword, value.clone())
-            } else {
-                encoder.add_itxt_chunk(keyword, value.clone())
-            }
-            .map_err(png_error)?;
-        }
-        let mut writer = encoder.write_header().map_err(png_error)?;
-        writer.write_image_data(&data).map_err(png_error)?;
-        writer.finish().map_err(png_error)?;
-        Ok(out)
+        write_png((w as u32, h as u32), color, depth, &text, &data, &|e| {
+            shape(format!("PNG encoding failed: {e}"))
+        })
     }
 }
