@@ -247,12 +247,22 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         "difference"
     );
     for (c, ch) in lut.channels.iter().enumerate() {
+        if exact[c].is_nan() {
+            // (a channel with no exact value between texels: an LTC fit's matrix entry)
+            outln!("{:<12} {:>20.12} {:>20} {:>12}", ch.name, gpu[c], "-", "-");
+            continue;
+        }
         outln!(
             "{:<12} {:>20.12} {:>20.12} {:>12.3e}",
             ch.name,
             gpu[c],
             exact[c],
             gpu[c] - exact[c]
+        );
+    }
+    if exact.iter().any(|v| v.is_nan()) {
+        outln!(
+            "note: \"-\": no exact value at this point: an LTC matrix entry is the fit at each texel, not a function to evaluate between them (verify refits texels; the lit error of the fit is in the sidecar's ltc section)"
         );
     }
     if a.filter == FilterArg::Hardware {

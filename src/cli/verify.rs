@@ -123,7 +123,9 @@ pub fn verify_texels(
                 .axes
                 .iter()
                 .enumerate()
-                .map(|(k, a)| a.coord(idx[k]))
+                // (the texel's own coordinate; exact_at applies the clamp, and an ltc table's
+                // sphere channel depends on the unclamped position)
+                .map(|(k, a)| a.nominal_coord(idx[k]))
                 .collect();
             crate::readback::exact_at(&table.spec, &table.to_kind_order(&x), REFERENCE_TOLERANCE)
                 .map(|r| table.stored_values(&r.0))
@@ -407,8 +409,18 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             }
         }
         let mut chans = Vec::new();
+        // an ltc table's matrix entries have no exact value to recompute (exact_at gives NaN):
+        // the fit is defined at its texels, and its error is the sidecar's `ltc` section
+        let no_exact = |exact: f64| spec.kind.is_ltc() && exact.is_nan();
         for (c, (e, idx, stored, exact)) in errs.iter().enumerate() {
             let name = &lut.channels[c].name;
+            if no_exact(*exact) {
+                if !a.json {
+                    outln!("  {name:<12} not recomputed: an LTC fit's matrix entry has no exact value (the fit's error is in the sidecar's ltc section)");
+                }
+                chans.push(json!({"channel": name, "checked": false, "reason": "an LTC fit's matrix entry has no exact value"}));
+                continue;
+            }
             // (relative above 1, like the error)
             let ok = *e <= threshold;
             if !ok {
@@ -436,6 +448,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         let mut lookup_docs = Vec::new();
         for (c, (e, at, got, exact)) in lookups.iter().enumerate() {
             let name = &lut.channels[c].name;
+            if no_exact(*exact) {
+                if !a.json {
+                    outln!("  {name:<12} not measured: no exact value between the fit's texels");
+                }
+                lookup_docs.push(json!({"channel": name, "checked": false}));
+                continue;
+            }
             let num = |k: &str| sidecar[k][name.as_str()].as_f64().unwrap_or(f64::NAN);
             let (estimate, bound) = (num("interpolation_estimate"), num("weight_rounding_bound"));
             let worst = num("ideal_filtering");
