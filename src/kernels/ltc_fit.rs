@@ -181,6 +181,30 @@ pub struct LtcTexel {
     pub fit: FitReport,
 }
 
+impl LtcTexel {
+    /// A texel with no fit: the clamped cosine (M⁻¹ = I) beside the norm and Fresnel
+    /// channels `nf`, for lobes with nothing to fit (a pure Lambertian lobe, or nothing
+    /// reflected).
+    pub fn unfitted(nf: NormFresnel) -> LtcTexel {
+        LtcTexel {
+            ltc: Ltc::IDENTITY,
+            norm: nf.norm,
+            fresnel: nf.fresnel,
+            norm_error: nf.norm_error,
+            fresnel_error: nf.fresnel_error,
+            evaluations: nf.evaluations,
+            fit: FitReport {
+                objective: 0.0,
+                l3: 0.0,
+                l3_relative: 0.0,
+                passes: 0,
+                lit_rms: 0.0,
+                lit_max: 0.0,
+            },
+        }
+    }
+}
+
 /// The number of parameters: `(ln a, b/a, ln c, d)`.
 const P: usize = 4;
 
@@ -567,20 +591,8 @@ pub fn fit_texel(
         // every lit value is 0 whatever the matrix; the texel keeps the clamped cosine, which
         // interpolates with its neighbours as well as any
         return Ok(LtcTexel {
-            ltc: Ltc::IDENTITY,
             norm: 0.0,
-            fresnel: nf.fresnel,
-            norm_error: nf.norm_error,
-            fresnel_error: nf.fresnel_error,
-            evaluations: nf.evaluations,
-            fit: FitReport {
-                objective: 0.0,
-                l3: 0.0,
-                l3_relative: 0.0,
-                passes: 0,
-                lit_rms: 0.0,
-                lit_max: 0.0,
-            },
+            ..LtcTexel::unfitted(nf)
         });
     }
     let fcos = brdf_fcos(brdf);

@@ -277,25 +277,7 @@ fn line(
     }
     Ok(mus
         .iter()
-        .map(|&mu| {
-            let nf = norm_and_fresnel(&brdf, mu, opts.tolerance);
-            LtcTexel {
-                ltc: crate::model::ltc::Ltc::IDENTITY,
-                norm: nf.norm,
-                fresnel: nf.fresnel,
-                norm_error: nf.norm_error,
-                fresnel_error: nf.fresnel_error,
-                evaluations: nf.evaluations,
-                fit: FitReport {
-                    objective: 0.0,
-                    l3: 0.0,
-                    l3_relative: 0.0,
-                    passes: 0,
-                    lit_rms: 0.0,
-                    lit_max: 0.0,
-                },
-            }
-        })
+        .map(|&mu| LtcTexel::unfitted(norm_and_fresnel(&brdf, mu, opts.tolerance)))
         .collect())
 }
 
