@@ -108,13 +108,8 @@ fn node_tables() -> &'static NodeTables {
             t.opc[i] = 2.0 * c * c;
             i += 1;
         };
-        put(0);
-        put(NTRAP);
-        for l in 1..=MAX_LOG2 {
-            let stride = NTRAP >> (l - 1);
-            for k in (stride / 2..NTRAP).step_by(stride) {
-                put(k);
-            }
+        for k in crate::quadrature::trapezoid::level_order(MAX_LOG2) {
+            put(k);
         }
         t
     })
