@@ -64,18 +64,15 @@ pub struct Probe {
 const ORDER: usize = 4;
 const CHECK_ORDER: usize = 3;
 
-/// `(∫ y dω, ∫ dω above the horizon)` over the quad `q` (and its mirror image) by an
-/// `order²` Gauss rule on the bilinear patch projected to the sphere (`ω(s, t) = P/|P|`,
-/// `dω = |(P_s × P_t)·P|/|P|³ ds dt`).
-fn quad_rule(
-    q: &[[f64; 3]; 4],
-    order: usize,
-    v: [f64; 3],
-    fcos: &dyn Fn(&Node) -> f64,
-    norm: f64,
-) -> (f64, f64) {
+/// One node of a probe's rule: its unit direction `d` and its solid-angle weight.
+type ProbeNode = ([f64; 3], f64);
+
+/// The nodes of the `order²` Gauss rule on the quad `q`'s bilinear patch projected to the
+/// sphere (`ω(s, t) = P/|P|`, `dω = |(P_s × P_t)·P|/|P|³ ds dt`). They depend only on the
+/// quad, not on the texel: [`probe_rules`] computes them once.
+fn quad_nodes(q: &[[f64; 3]; 4], order: usize) -> Vec<ProbeNode> {
     let (gx, gw) = gauss_legendre(order);
-    let (mut y, mut om) = (0.0, 0.0);
+    let mut out = Vec::with_capacity(order * order);
     for (&s, &ws) in gx.iter().zip(&gw) {
         for (&t, &wt) in gx.iter().zip(&gw) {
             let (s, t) = (0.5 * (s + 1.0), 0.5 * (t + 1.0));
@@ -93,15 +90,42 @@ fn quad_rule(
             let l2 = dot(p, p);
             let l = l2.sqrt();
             let w = 0.25 * ws * wt * dot(cross(ps, pt), p).abs() / (l2 * l);
-            let d = [p[0] / l, p[1] / l, p[2] / l];
-            if d[2] > 0.0 {
-                om += w;
-            }
-            if let Some(n) = node_of(v, d) {
-                let val = fcos(&n) / norm;
-                if val.is_finite() && val > 0.0 {
-                    y += w * val;
-                }
+            out.push(([p[0] / l, p[1] / l, p[2] / l], w));
+        }
+    }
+    out
+}
+
+/// Each probe quad with the nodes of its `ORDER²` and `CHECK_ORDER²` rules, built once per
+/// process (the same for every texel of every table).
+fn probe_rules() -> &'static [([[f64; 3]; 4], Vec<ProbeNode>, Vec<ProbeNode>)] {
+    static RULES: std::sync::OnceLock<Vec<([[f64; 3]; 4], Vec<ProbeNode>, Vec<ProbeNode>)>> =
+        std::sync::OnceLock::new();
+    RULES.get_or_init(|| {
+        probe_quads()
+            .into_iter()
+            .map(|q| (q, quad_nodes(&q, ORDER), quad_nodes(&q, CHECK_ORDER)))
+            .collect()
+    })
+}
+
+/// `(∫ y dω, ∫ dω above the horizon)` over a quad (and its mirror image) by its rule's
+/// nodes ([`quad_nodes`]).
+fn quad_rule(
+    nodes: &[ProbeNode],
+    v: [f64; 3],
+    fcos: &dyn Fn(&Node) -> f64,
+    norm: f64,
+) -> (f64, f64) {
+    let (mut y, mut om) = (0.0, 0.0);
+    for &(d, w) in nodes {
+        if d[2] > 0.0 {
+            om += w;
+        }
+        if let Some(n) = node_of(v, d) {
+            let val = fcos(&n) / norm;
+            if val.is_finite() && val > 0.0 {
+                y += w * val;
             }
         }
     }
@@ -120,16 +144,20 @@ pub fn probes(
     peak: Option<[f64; 3]>,
     floor: f64,
 ) -> Vec<Probe> {
-    probe_quads()
-        .into_iter()
-        .filter(|q| {
+    probe_rules()
+        .iter()
+        .filter(|(q, _, _)| {
             peak.is_none_or(|pk| !(0..4).all(|i| dot(cross(q[i], q[(i + 1) % 4]), pk) >= 0.0))
         })
-        .filter_map(|q| {
-            let (y, omega) = quad_rule(&q, ORDER, v, fcos, norm);
-            let (y3, _) = quad_rule(&q, CHECK_ORDER, v, fcos, norm);
+        .filter_map(|(q, high, check)| {
+            let (y, omega) = quad_rule(high, v, fcos, norm);
+            let (y3, _) = quad_rule(check, v, fcos, norm);
             let ok = (y - y3).abs() <= 0.1 * (y + floor * omega) && omega > 0.0;
-            ok.then_some(Probe { verts: q, y, omega })
+            ok.then_some(Probe {
+                verts: *q,
+                y,
+                omega,
+            })
         })
         .collect()
 }
