@@ -67,6 +67,9 @@ const CHECK_ORDER: usize = 3;
 /// One node of a probe's rule: its unit direction `d` and its solid-angle weight.
 type ProbeNode = ([f64; 3], f64);
 
+/// A probe quad with the nodes of its `ORDER²` and `CHECK_ORDER²` rules.
+type ProbeRules = ([[f64; 3]; 4], Vec<ProbeNode>, Vec<ProbeNode>);
+
 /// The nodes of the `order²` Gauss rule on the quad `q`'s bilinear patch projected to the
 /// sphere (`ω(s, t) = P/|P|`, `dω = |(P_s × P_t)·P|/|P|³ ds dt`). They depend only on the
 /// quad, not on the texel: [`probe_rules`] computes them once.
@@ -98,9 +101,8 @@ fn quad_nodes(q: &[[f64; 3]; 4], order: usize) -> Vec<ProbeNode> {
 
 /// Each probe quad with the nodes of its `ORDER²` and `CHECK_ORDER²` rules, built once per
 /// process (the same for every texel of every table).
-fn probe_rules() -> &'static [([[f64; 3]; 4], Vec<ProbeNode>, Vec<ProbeNode>)] {
-    static RULES: std::sync::OnceLock<Vec<([[f64; 3]; 4], Vec<ProbeNode>, Vec<ProbeNode>)>> =
-        std::sync::OnceLock::new();
+fn probe_rules() -> &'static [ProbeRules] {
+    static RULES: std::sync::OnceLock<Vec<ProbeRules>> = std::sync::OnceLock::new();
     RULES.get_or_init(|| {
         probe_quads()
             .into_iter()
