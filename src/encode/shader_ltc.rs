@@ -10,8 +10,9 @@
 //! f64 is [`crate::kernels::ltc_polygon::ltc_polygon_integral`].
 //!
 //! Functions, `P` the table's lower-case identifier (the lookup is `P_lookup`):
-//! * with the four matrix channels: `P_ltc_edge(a, b)` (the vector `θ·(a × b)/|a × b|` of
-//!   one edge between unit vectors), `P_ltc_unit`, `P_ltc_horizon` (where a segment crosses
+//! * with the four matrix channels: `P_ltc_theta_sin(x)` (`θ/sin θ` of `x = cos θ`),
+//!   `P_ltc_edge(a, b)` (the vector `θ·(a × b)/|a × b|` of one edge between unit vectors),
+//!   `P_ltc_unit`, `P_ltc_horizon` (where a segment crosses
 //!   z = 0), `P_ltc_polygon(minv, n, v, pos, p0, p1, p2, p3)` (`∫_P D` of the LTC `minv`
 //!   over the quad `p0…p3`, world space; a triangle repeats its first vertex as `p3`),
 //!   and `P_ltc_minv(texture, [sampler,] axes…)` (M⁻¹ rebuilt from the lookup's texel);
@@ -21,16 +22,24 @@
 //! The shaded specular is `P_schlick_weight(…) · max(P_ltc_polygon(…), 0)` (one-sided;
 //! `abs` for a two-sided light).
 //!
-//! **The edge integral in f32.** `θ/sin θ` as a function of `x = a·b` is
-//! `acos(x)/√((1 − x)(1 + x))`: computed that way, `1 − x` is exact for `x ≥ ½` (Sterbenz)
-//! and `(1 − x)(1 + x)` keeps its relative precision where `1 − x²` would cancel, and
-//! `acos` is used only for `1 − x ≥ 1/16`, away from its ill-conditioned end at 1. For
-//! `y = 1 − x < 1/16` the snippet sums the series `θ/sin θ = Σₖ 2ᵏ(k!)²/(2k + 1)! yᵏ`
-//! (`acos(1 − y)/√(2y − y²)`'s Taylor series at 0, radius 2) to k = 5: the first term left
-//! out is below `0.0054·(1/16)⁶ = 3.2·10⁻¹⁰` relative, far under f32's 6·10⁻⁸. Towards
-//! `x = −1` (an edge spanning half a great circle, seen through the shading point) the ratio
-//! grows without bound while `a × b` goes to 0; the product stays finite because the
-//! square root's argument is kept ≥ 10⁻³⁰.
+//! **The edge integral in f32.** Each edge contributes `θ/sin θ · (a × b)` for unit `a`,
+//! `b` with `x = a·b = cos θ`; the snippet computes `θ/sin θ = acos(x)/√(1 − x²)` to a few
+//! f32 ulps over all of [−1, 1] with arithmetic and square roots only
+//! (`P_ltc_theta_sin`), because the shading languages promise little of `acos` (Vulkan
+//! and WebGPU give it the error of `atan2(√(1 − x²), x)`, up to 4096 ulps, and
+//! `1 − x·x` cancels near x = ±1; measured on SwiftShader the textbook
+//! `acos(x)·inversesqrt(1 − x²)` is off by up to 4·10⁻⁵ of the integral, tests/gpu_path.rs):
+//! * for `|x| = cos θₐ`, halve the angle: `φ = θₐ/2`, `cos φ = c = √((1 + |x|)/2)`,
+//!   `1 − c = ((1 − |x|)/2)/(1 + c)` (no cancellation; `1 − |x|` is exact for `|x| ≥ ½`,
+//!   Sterbenz), and `θₐ/sin θₐ = (φ/sin φ)/cos φ`;
+//! * `φ/sin φ = acos(1 − y)/√(2y − y²) = Σₖ 2ᵏ(k!)²/(2k + 1)! yᵏ` (its Taylor series at
+//!   `y = 1 − cos φ = 0`, radius 2), summed to k = 9 for `y ≤ 1 − √½ = 0.293`: the terms
+//!   left out are below 1.5·10⁻⁹ relative;
+//! * for x < 0, `θ = π − θₐ` and `θ/sin θ = π/sin θₐ − θₐ/sin θₐ` with
+//!   `sin θₐ = √((1 − x)(1 + x))` (`1 + x` exact for `x ≤ −½`). Towards x = −1 (an edge
+//!   spanning half a great circle, seen through the shading point) the ratio grows without
+//!   bound while `a × b` goes to 0; the product stays finite because the square root's
+//!   argument is kept ≥ 10⁻³⁰.
 //!
 //! **Clipping.** Exact: the transformed polygon is clipped to z ≥ 0 as Sutherland &
 //! Hodgman (1974) clip, streamed edge by edge (an exit point is joined along the horizon to
@@ -118,8 +127,9 @@ pub(crate) fn documentation(c: &Context) -> Vec<String> {
              vertices are taken to the frame (t1 = the normalized part of v orthogonal to n, t2 = n x t1, \
              n; any tangent when v = n), multiplied by minv, clipped to the horizon exactly \
              (Sutherland-Hodgman, one edge at a time) and summed with Lambert's edge formula, \
-             (1/2pi) sum theta_i (u_i x u_i+1).z / |u_i x u_i+1| with theta_i/sin(theta_i) computed accurately \
-             in f32 ({p}_ltc_edge: acos only away from its ill-conditioned end, a series below). It is \
+             (1/2pi) sum theta_i (u_i x u_i+1).z / |u_i x u_i+1| with theta_i/sin(theta_i) = acos(x)/sqrt(1 - x^2) \
+             computed to a few f32 ulps over [-1, 1] without acos ({p}_ltc_theta_sin: a half angle and a series; \
+             the shading languages allow acos errors of thousands of ulps). It is \
              positive for vertices counterclockwise as seen from pos and negative for the other winding: \
              take max(., 0) for a one-sided light, abs(.) for a two-sided one. The table's sphere channel \
              (Heitz & Hill 2017's form-factor sphere, an approximation) is not needed."
@@ -145,9 +155,9 @@ pub(crate) fn documentation(c: &Context) -> Vec<String> {
     d
 }
 
-/// The series coefficients of θ/sin θ in y = 1 − cos θ (see the module doc), as literals.
-const SERIES: &str =
-    "1.0 + y * (0.33333334 + y * (0.13333334 + y * (0.057142857 + y * (0.025396826 + y * 0.011544012))))";
+/// `φ/sin φ = Σₖ 2ᵏ(k!)²/(2k + 1)! yᵏ`, `y = 1 − cos φ`, to k = 9, in Horner form (module doc).
+const SERIES: &str = "1.0 + y * (0.333333343 + y * (0.13333334 + y * (0.0571428575 + y * (0.0253968257 \
+     + y * (0.0115440115 + y * (0.00532800518 + y * (0.0024864024 + y * (0.00117007177 + y * 0.0005542445))))))))";
 
 /// The functions (after the lookup function).
 pub(crate) fn code(c: &Context) -> String {
@@ -230,18 +240,24 @@ fn polygon_code(c: &Context) -> String {
             _ => format!("    {hp}{ty} {name} = {expr};\n"),
         }
     };
-    // the edge vector
+    // θ/sin θ of x = cos θ, then the edge vector
+    f.push_str(&sig(&format!("{p}_ltc_theta_sin"), &[("x", float)], float));
+    f.push_str(&let_("a", float, "abs(x)"));
+    f.push_str(&let_("c", float, "sqrt(0.5 + 0.5 * a)"));
+    f.push_str(&let_("y", float, "(0.5 - 0.5 * a) / (1.0 + c)"));
+    f.push_str(&var_("g", float, &format!("({SERIES}) / c")));
+    let _ = write!(
+        f,
+        "    if (x < 0.0) {{\n        g = 3.14159274 * {rsqrt}(max((1.0 - x) * (1.0 + x), 1e-30)) - g;\n    }}\n    return g;\n}}\n\n"
+    );
     f.push_str(&sig(
         &format!("{p}_ltc_edge"),
         &[("a", vec3), ("b", vec3)],
         vec3,
     ));
-    f.push_str(&let_("x", float, "clamp(dot(a, b), -1.0, 1.0)"));
-    f.push_str(&let_("y", float, "1.0 - x"));
-    f.push_str(&var_("r", float, SERIES));
     let _ = write!(
         f,
-        "    if (y >= 0.0625) {{\n        r = acos(x) * {rsqrt}(max(y * (1.0 + x), 1e-30));\n    }}\n    return r * cross(a, b);\n}}\n\n"
+        "    return {p}_ltc_theta_sin(clamp(dot(a, b), -1.0, 1.0)) * cross(a, b);\n}}\n\n"
     );
     // normalization that leaves a zero vector at zero
     f.push_str(&sig(&format!("{p}_ltc_unit"), &[("v", vec3)], vec3));
