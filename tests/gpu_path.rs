@@ -33,6 +33,10 @@
 //! y-flipped texture, a half-texel shift, a missing endpoint remap, and slices or layers in
 //! the wrong order.
 //!
+//! The area-light functions of `ltc` tables' snippets run in both APIs too (tests/gpu/ltc.js,
+//! [`ltc_area_lights_evaluate_as_the_library_on_a_software_gpu`]): polygons lit through a
+//! small heitz-ltc bake, compared with the library's lookup and polygon integral.
+//!
 //! The page and every file it loads are served by this test on 127.0.0.1; Chromium gets no
 //! other network.
 
@@ -1554,9 +1558,11 @@ fn compare_ltc(
 }
 
 /// The LTC snippets evaluate area lights on a software GPU as the library does: the heitz-ltc
-/// preset's layout at 16 × 16, its KTX2 textures uploaded as WebGPU textures (webgpu.js, as
-/// for every table), the generated WGSL `ltc_1_ltc_minv`, `ltc_1_ltc_polygon`, `ltc_2_lookup`
-/// and `ltc_2_schlick_weight` evaluated for 15 polygons × 6 views × 5 roughnesses, and every
+/// preset's layout at 16 × 16, its KTX2 textures uploaded as WebGPU textures (webgpu.js) and
+/// as three.js textures (threejs.js' `loadTable`, WebGL2), as for every table, the generated
+/// WGSL (compute shader) and GLSL (RawShaderMaterial) `ltc_1_ltc_minv`, `ltc_1_ltc_polygon`,
+/// `ltc_2_lookup` and `ltc_2_schlick_weight` evaluated for 15 polygons × 6 views × 5
+/// roughnesses, and every
 /// value compared with the documented lookup ([`HeitzTable::lookup`] of the stored texels)
 /// and the library's polygon integral (`kernels::ltc_polygon`) to the bounds argued in
 /// [`gpu_tolerance`] and [`ltc_integral_bound`]. The negative controls must fail: the
@@ -1606,7 +1612,7 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
         "/index.html".into(),
         (index.into_bytes(), content_type("x.html")),
     );
-    for f in ["ltc.js", "webgpu.js"] {
+    for f in ["ltc.js", "webgpu.js", "threejs.js"] {
         files.insert(
             format!("/{f}"),
             (std::fs::read(gpu_dir.join(f)).unwrap(), content_type(f)),
@@ -1626,35 +1632,54 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
         ),
     );
     files.insert("/ltc_2.ktx2".into(), (ktx2, "application/octet-stream"));
-    // the snippets as written, and the broken variants
-    let minv =
-        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.g), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.b, 0.0, t.a))";
-    let transposed =
-        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.b), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.g, 0.0, t.a))";
-    assert!(matrix.wgsl.contains(minv), "{}", matrix.wgsl);
-    let theta_sin = "fn ltc_1_ltc_theta_sin(x: f32) -> f32 {\n";
-    assert!(matrix.wgsl.contains(theta_sin));
+    // the snippets as written, and the broken variants: [WGSL, GLSL]
+    let minv = [
+        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.g), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.b, 0.0, t.a))",
+        "mat3(vec3(t.r, 0.0, t.g), vec3(0.0, 1.0, 0.0), vec3(t.b, 0.0, t.a))",
+    ];
+    let transposed = [
+        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.b), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.g, 0.0, t.a))",
+        "mat3(vec3(t.r, 0.0, t.b), vec3(0.0, 1.0, 0.0), vec3(t.g, 0.0, t.a))",
+    ];
+    let theta_sin = [
+        "fn ltc_1_ltc_theta_sin(x: f32) -> f32 {\n",
+        "highp float ltc_1_ltc_theta_sin(highp float x)\n{\n",
+    ];
+    let textbook = [
+        "    return acos(x) * inverseSqrt(max(1.0 - x * x, 1e-30));\n",
+        "    return acos(x) * inversesqrt(max(1.0 - x * x, 1e-30));\n",
+    ];
+    let sources = [&matrix.wgsl, &matrix.glsl];
+    for k in 0..2 {
+        assert!(sources[k].contains(minv[k]), "{}", sources[k]);
+        assert!(sources[k].contains(theta_sin[k]), "{}", sources[k]);
+    }
+    let both = |f: &dyn Fn(usize) -> String| [f(0), f(1)];
     let variants = [
-        ("as generated", "/ltc_1.ktx2", matrix.wgsl.clone()),
+        (
+            "as generated",
+            "/ltc_1.ktx2",
+            both(&|k| sources[k].to_string()),
+        ),
         (
             "ltc_1 y-flipped",
             "/ltc_1-flipped.ktx2",
-            matrix.wgsl.clone(),
+            both(&|k| sources[k].to_string()),
         ),
         (
             "M^-1 transposed",
             "/ltc_1.ktx2",
-            matrix.wgsl.replace(minv, transposed),
+            both(&|k| sources[k].replace(minv[k], transposed[k])),
         ),
         (
             "theta/sin(theta) as acos(x)/sqrt(1 - x^2)",
             "/ltc_1.ktx2",
-            matrix.wgsl.replace(
-                theta_sin,
-                &format!("{theta_sin}    return acos(x) * inverseSqrt(max(1.0 - x * x, 1e-30));\n"),
-            ),
+            both(&|k| {
+                sources[k].replace(theta_sin[k], &format!("{}{}", theta_sin[k], textbook[k]))
+            }),
         ),
     ];
+    let apis = ["webgpu", "webgl"];
     let flat: Vec<f32> = points
         .iter()
         .flat_map(|p| {
@@ -1666,19 +1691,21 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
             v
         })
         .collect();
-    let list: Vec<Value> = variants
-        .iter()
-        .enumerate()
-        .map(|(id, (_, url, snippet))| {
-            json!({"id": id, "matrix_ktx2": url, "schlick_ktx2": "/ltc_2.ktx2",
-                   "matrix_snippet": snippet, "schlick_snippet": schlick.wgsl,
-                   "prefix_matrix": "ltc_1", "prefix_schlick": "ltc_2", "points": flat})
-        })
-        .collect();
+    // case id = 2 × variant + api
+    let mut list: Vec<Value> = Vec::new();
+    for (_, url, snippet) in &variants {
+        for (k, api) in apis.iter().enumerate() {
+            let schlick_snippet = if k == 0 { &schlick.wgsl } else { &schlick.glsl };
+            list.push(json!({"id": list.len(), "api": api, "matrix_ktx2": url,
+                   "schlick_ktx2": "/ltc_2.ktx2", "matrix_snippet": snippet[k],
+                   "schlick_snippet": schlick_snippet, "prefix_matrix": "ltc_1",
+                   "prefix_schlick": "ltc_2", "points": flat}));
+        }
+    }
     files.insert(
         "/cases.json".into(),
         (
-            Value::Array(list).to_string().into_bytes(),
+            Value::Array(list.clone()).to_string().into_bytes(),
             "application/json",
         ),
     );
@@ -1695,7 +1722,8 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
     eprintln!("browser: {info}");
     assert_eq!(info["float32_filterable"], true, "{info}");
     let mut failures = Vec::new();
-    for (id, (what, _, _)) in variants.iter().enumerate() {
+    for (id, c) in list.iter().enumerate() {
+        let what = format!("{} [{}]", variants[id / 2].0, c["api"].as_str().unwrap());
         let values = match results.values.get(&id) {
             Some(Ok(v)) => v,
             Some(Err(e)) => panic!("{what}: {e}\n{log}"),
@@ -1707,9 +1735,9 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
             f.len(),
             f.iter().take(3).map(|m| format!("\n  {m}")).collect::<String>()
         );
-        if id == 0 {
+        if id < 2 {
             assert!(n >= 12 * points.len() - points.len(), "{n}");
-            failures.extend(f.into_iter().take(20));
+            failures.extend(f.into_iter().take(20).map(|m| format!("{what}: {m}")));
         } else if !f
             .iter()
             .any(|m| m.contains("integral") || m.contains("ltc_1"))
