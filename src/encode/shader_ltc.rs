@@ -420,3 +420,101 @@ fn schlick_code(c: &Context, s: [&str; 2]) -> String {
     );
     f
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lut::{Axis, Channel, Convention, Quantity};
+    use crate::model::RoughnessQuantity;
+
+    /// The literals of [`SERIES`], in order.
+    fn coefficients() -> Vec<f64> {
+        SERIES
+            .split(|c: char| "()*+ ".contains(c))
+            .filter_map(|t| t.parse::<f64>().ok())
+            .collect()
+    }
+
+    /// The series' literals are `2ᵏ(k!)²/(2k + 1)!` rounded to f32, and the snippet's
+    /// `θ/sin θ` (its formula evaluated in f64 with those literals) is within 2·10⁻⁸ of
+    /// `acos(x)/√(1 − x²)` on [−1, 1): the truncation leaves < 1.5·10⁻⁹ (module doc), and
+    /// each literal is off by at most half an f32 ulp, 3·10⁻⁸ relative, of a term ≤ 0.1 past
+    /// the first (k ≥ 1: `c₁y ≤ ⅓·0.293`), so the ten add < 10⁻⁸.
+    #[test]
+    fn theta_over_sin_theta_is_accurate() {
+        let c = coefficients();
+        assert_eq!(c.len(), 10);
+        let mut exact = 1.0f64;
+        for (k, &ck) in c.iter().enumerate() {
+            if k > 0 {
+                // c_k = c_{k−1}·2k²/(2k(2k + 1)) = c_{k−1}·k/(2k + 1)
+                exact *= k as f64 / (2 * k + 1) as f64;
+            }
+            assert_eq!(ck as f32, exact as f32, "coefficient {k}");
+        }
+        let theta_sin = |x: f64| {
+            let a = x.abs();
+            let cs = (0.5 + 0.5 * a).sqrt();
+            let y = (0.5 - 0.5 * a) / (1.0 + cs);
+            let g = c.iter().rev().fold(0.0, |s, &ck| s * y + ck) / cs;
+            if x < 0.0 {
+                std::f64::consts::PI / ((1.0 - x) * (1.0 + x)).sqrt() - g
+            } else {
+                g
+            }
+        };
+        for i in 0..=2000 {
+            let x = -0.9999 + 1.9999 * i as f64 / 2000.0;
+            let want = if x == 1.0 {
+                1.0
+            } else {
+                x.acos() / (1.0 - x * x).sqrt()
+            };
+            let got = theta_sin(x);
+            assert!((got / want - 1.0).abs() < 2e-8, "x = {x}: {got} vs {want}");
+        }
+    }
+
+    fn lut(channels: &[&str]) -> Lut {
+        let axis = |name: &str| Axis {
+            name: name.into(),
+            quantity: Quantity::Roughness(RoughnessQuantity::Perceptual),
+            size: 2,
+            range: [0.0, 1.0],
+            convention: Convention::Endpoints,
+            warp: Default::default(),
+            clamp: None,
+        };
+        Lut {
+            axes: vec![axis("roughness"), axis("cos_theta_v")],
+            channels: channels
+                .iter()
+                .map(|c| Channel {
+                    name: c.to_string(),
+                    meaning: String::new(),
+                })
+                .collect(),
+            data: vec![0.0; 4 * channels.len()],
+            error_estimate: vec![0.0; channels.len()],
+            evaluations: 0,
+        }
+    }
+
+    #[test]
+    fn only_ltc_tables_with_the_channels_get_the_functions() {
+        let matrix = lut(&["m00", "m20", "m02", "m22"]);
+        let schlick = lut(&["norm", "fresnel", "zero", "sphere"]);
+        assert!(applies(&matrix, Some("ltc")));
+        assert!(applies(&schlick, Some("ltc")));
+        assert!(!applies(&matrix, Some("dfg")));
+        assert!(!applies(&matrix, None));
+        assert!(!applies(&lut(&["sphere"]), Some("ltc")));
+        assert!(!applies(&lut(&["m00", "norm"]), Some("ltc")));
+        assert_eq!(matrix_components(&matrix), Some(["r", "g", "b", "a"]));
+        assert_eq!(
+            matrix_components(&lut(&["m22", "m02", "m20", "m00"])),
+            Some(["a", "b", "g", "r"])
+        );
+        assert_eq!(schlick_components(&schlick), Some(["r", "g"]));
+    }
+}
