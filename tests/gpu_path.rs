@@ -33,6 +33,10 @@
 //! y-flipped texture, a half-texel shift, a missing endpoint remap, and slices or layers in
 //! the wrong order.
 //!
+//! The area-light functions of `ltc` tables' snippets run in both APIs too (tests/gpu/ltc.js,
+//! [`ltc_area_lights_evaluate_as_the_library_on_a_software_gpu`]): polygons lit through a
+//! small heitz-ltc bake, compared with the library's lookup and polygon integral.
+//!
 //! The page and every file it loads are served by this test on 127.0.0.1; Chromium gets no
 //! other network.
 
@@ -1282,4 +1286,488 @@ fn engines_doc_quotes_the_tested_code() {
             "docs/engines.md has a code block no test runs:\n{code}"
         );
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// LTC area lights: the generated area-light functions on the GPU
+
+/// A point of the LTC case: a shading point, a light polygon (a triangle repeats its first
+/// vertex), a perceptual roughness and an F0 (the specular is computed with
+/// `f0 = (f0, 0.5, 0)`, `f90 = 1`), all f32 as the GPU gets them.
+struct LtcPoint {
+    n: [f32; 3],
+    v: [f32; 3],
+    pos: [f32; 3],
+    verts: [[f32; 3]; 4],
+    r: f32,
+    f0: f32,
+}
+
+/// The polygons of the LTC case, in a frame with the normal +z, relative to the shading
+/// point: quads and triangles of several sizes (half-sizes 10⁻⁴ to 2), heights and
+/// orientations, over the mirror direction and away from it, crossing the horizon, wholly
+/// below it, and one with the reverse winding (negative integral). The tiny ones, whose
+/// edges span < 3.4·10⁻⁴ rad (their cosines round to 1 in f32), check the edge term where
+/// `acos` alone fails.
+fn ltc_polygons() -> Vec<[[f64; 3]; 4]> {
+    use brdfbake::numerics::vec3::{cross, dot};
+    // a planar shape of radius s about `c`, its plane tilted by `tilt` rad about `axis`
+    // (0 = x, 1 = y) from horizontal, wound counterclockwise seen from the origin
+    let shape = |corners: usize, c: [f64; 3], s: f64, axis: usize, tilt: f64, reverse: bool| {
+        let (sn, cs) = f64::sin_cos(tilt);
+        let mut p: Vec<[f64; 3]> = (0..corners)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / corners as f64 + 0.3;
+                let (x, y) = (s * a.cos(), s * a.sin());
+                let q = if axis == 0 {
+                    [x, y * cs, y * sn]
+                } else {
+                    [x * cs, y, x * sn]
+                };
+                [c[0] + q[0], c[1] + q[1], c[2] + q[2]]
+            })
+            .collect();
+        let d = |i: usize, j: usize| [p[j][0] - p[i][0], p[j][1] - p[i][1], p[j][2] - p[i][2]];
+        let facing = dot(cross(d(0, 1), d(0, 2)), c) > 0.0;
+        if facing == reverse {
+            p.reverse();
+        }
+        [p[0], p[1], p[2], if corners == 4 { p[3] } else { p[0] }]
+    };
+    vec![
+        shape(4, [0.0, 0.0, 1.0], 0.5, 0, 0.0, false),
+        shape(4, [0.0, 0.0, 1.0], 1e-3, 0, 0.2, false),
+        shape(4, [0.2, -0.1, 3.0], 2.0, 1, 0.3, false),
+        shape(4, [-1.5, 0.3, 1.0], 0.4, 1, 0.6, false),
+        shape(4, [1.5, 0.3, 1.0], 0.4, 1, -0.6, false),
+        shape(4, [-1.0, 0.2, 0.1], 0.6, 0, 1.2, false),
+        shape(
+            4,
+            [0.0, -1.0, 0.2],
+            0.5,
+            0,
+            std::f64::consts::FRAC_PI_2,
+            false,
+        ),
+        shape(4, [-3.0, 0.0, 0.3], 1.5, 1, 1.4, false),
+        shape(4, [0.5, 0.5, -1.0], 0.3, 0, 0.0, false),
+        shape(4, [0.0, 0.0, 1.0], 0.5, 0, 0.0, true),
+        shape(4, [-1.0, 0.3, 0.15], 1e-4, 1, 1.4, false),
+        shape(3, [0.0, 0.0, 1.0], 0.7, 0, 0.0, false),
+        shape(3, [-1.2, 0.4, 0.5], 0.8, 1, 1.0, false),
+        shape(3, [2.0, -1.0, 0.3], 0.5, 0, -0.8, false),
+        shape(3, [-2.0, 0.0, 0.4], 2e-3, 1, 1.3, false),
+    ]
+}
+
+/// The points of the LTC case: every polygon at 6 views (cos θ = 1 … 0.02, out of the
+/// polygons' frame by 0.4 rad of azimuth) and 5 roughnesses, in a world frame rotated away
+/// from every axis (so the snippet's frame is not the identity) and shifted off the origin.
+fn ltc_points() -> Vec<LtcPoint> {
+    // rotation about (1, 2, 3)/√14 by 0.7 rad (Rodrigues)
+    let k = [1.0 / 14f64.sqrt(), 2.0 / 14f64.sqrt(), 3.0 / 14f64.sqrt()];
+    let (s, c) = 0.7f64.sin_cos();
+    let rot = |p: [f64; 3]| {
+        let kp = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+        let kx = [
+            k[1] * p[2] - k[2] * p[1],
+            k[2] * p[0] - k[0] * p[2],
+            k[0] * p[1] - k[1] * p[0],
+        ];
+        [0, 1, 2].map(|i| p[i] * c + kx[i] * s + k[i] * kp * (1.0 - c))
+    };
+    let pos = [0.3, -0.2, 0.5];
+    let f = |p: [f64; 3]| p.map(|x| x as f32);
+    let world = |p: [f64; 3]| {
+        let q = rot(p);
+        f([pos[0] + q[0], pos[1] + q[1], pos[2] + q[2]])
+    };
+    let mut out = Vec::new();
+    for (pi, poly) in ltc_polygons().iter().enumerate() {
+        for (vi, mu) in [1.0f64, 0.9, 0.6, 0.3, 0.1, 0.02].into_iter().enumerate() {
+            let st = (1.0 - mu * mu).sqrt();
+            let v = [st * 0.4f64.cos(), st * 0.4f64.sin(), mu];
+            for (ri, r) in [0.05f32, 0.2, 0.45, 0.75, 1.0].into_iter().enumerate() {
+                out.push(LtcPoint {
+                    n: f(rot([0.0, 0.0, 1.0])),
+                    v: f(rot(v)),
+                    pos: f(pos),
+                    verts: poly.map(world),
+                    r,
+                    f0: [0.04f32, 0.5, 1.0][(pi + vi + ri) % 3],
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The snippet's frame (t1, t2, n) in f64, built as the snippet builds it: t1 the part of
+/// v orthogonal to n, normalized, or Duff et al.'s tangent when that part is below 10⁻⁶.
+fn ltc_frame(n: [f64; 3], v: [f64; 3]) -> [[f64; 3]; 3] {
+    use brdfbake::numerics::vec3::{cross, dot};
+    let d = dot(n, v);
+    let t = [v[0] - n[0] * d, v[1] - n[1] * d, v[2] - n[2] * d];
+    let l = dot(t, t);
+    let t1 = if l > 1e-12 {
+        t.map(|x| x / l.sqrt())
+    } else {
+        let s = if n[2] >= 0.0 { 1.0 } else { -1.0 };
+        let k = -1.0 / (s + n[2]);
+        [1.0 + s * n[0] * n[0] * k, s * n[0] * n[1] * k, -s * n[0]]
+    };
+    [t1, cross(n, t1), n]
+}
+
+/// `∫_P D` of the LTC with Heitz texel `m` over the local vertices `q`, by the library
+/// (`kernels::ltc_polygon`).
+fn ltc_integral(m: [f64; 4], q: &[[f64; 3]; 4]) -> f64 {
+    let ltc = brdfbake::model::ltc::Ltc::from_heitz_texel(m).expect("an LTC");
+    brdfbake::kernels::ltc_polygon::ltc_polygon_integral(&ltc, q).expect("a polygon")
+}
+
+/// How far the GPU's integral may lie from the library's, to first order in the f32
+/// errors of its inputs and steps (U = 2⁻²⁴):
+/// * the matrix entries: the filtered texel is within `tol` of the f64 lookup (checked on
+///   its own), and multiplying a vertex by M⁻¹ rounds each product and sum (≤ 3U of the
+///   terms: 4U of each entry covers it);
+/// * the vertices' local coordinates: `p − pos` (U), the frame (t1 = v − n(n·v) then
+///   normalized: ≤ 6U of a unit vector, t2 = n × t1 another 3U) and the three dot products
+///   (3U) put each coordinate within 16U·|p − pos| of the exact one;
+/// * each of the ≤ 6 edges of the clipped polygon: normalizing its ends (3U each, with
+///   inversesqrt's 2 ulps), the dot and cross products (3U), θ/sin θ (`ltc_theta_sin`: the
+///   half angle's square root and quotient 6U, the series' Horner sum 10U and its division
+///   2U, or π/sin θ and the difference 8U; its slope in x is at most 1/3 ·(1/sin θ)², which
+///   the cross product's matching factor absorbs), the product: ≤ 32U of an edge's θ ≤ π,
+///   doubled for room; the sum of 7 terms and the 1/2π: 8U more. That is
+///   ≤ 6·64U·π/2π = 192U.
+///
+/// The first two terms are `Σⱼ |∂E/∂xⱼ|·δxⱼ`, the derivatives by central differences of the
+/// library's integral in f64 (steps 10⁻⁶ of each input's scale: the f64 rounding of E,
+/// 10⁻¹⁶, over the step is 10⁻¹⁰ of the derivative).
+fn ltc_integral_bound(m: [f64; 4], tol: &[f64], q: &[[f64; 3]; 4]) -> f64 {
+    let mut bound = 192.0 * U;
+    for j in 0..4 {
+        let h = 1e-6 * m[j].abs().max(1e-3);
+        let (mut a, mut b) = (m, m);
+        a[j] += h;
+        b[j] -= h;
+        let d = (ltc_integral(a, q) - ltc_integral(b, q)).abs() / (2.0 * h);
+        bound += d * (tol[j] + 4.0 * U * m[j].abs());
+    }
+    for i in 0..4 {
+        let len = q[i].iter().map(|x| x * x).sum::<f64>().sqrt();
+        for k in 0..3 {
+            let h = 1e-6 * len;
+            let (mut a, mut b) = (*q, *q);
+            a[i][k] += h;
+            b[i][k] -= h;
+            let d = (ltc_integral(m, &a) - ltc_integral(m, &b)).abs() / (2.0 * h);
+            bound += d * 16.0 * U * len;
+        }
+    }
+    bound
+}
+
+/// The comparisons of one LTC case's results (3 vec4 per point); the messages of those that
+/// fail, how many were made, and the largest |difference| / bound of the integral.
+fn compare_ltc(
+    matrix: &Table,
+    schlick: &Table,
+    points: &[LtcPoint],
+    values: &[f32],
+) -> (Vec<String>, usize, f64) {
+    use brdfbake::numerics::vec3::dot;
+    use brdfbake::table::ltc_layout::HeitzTable;
+    let heitz = |t: &Table| {
+        let n = t.lut.axes[0].size;
+        (0..n * n)
+            .map(|i| [0, 1, 2, 3].map(|c| t.lut.texel([i % n, i / n, 0], c) as f64))
+            .collect::<Vec<[f64; 4]>>()
+    };
+    let h = HeitzTable {
+        n: matrix.lut.axes[0].size,
+        ltc_1: heitz(matrix),
+        ltc_2: heitz(schlick),
+    };
+    let mut fails = Vec::new();
+    let mut count = 0;
+    let mut worst = 0.0f64;
+    if values.len() != 12 * points.len() {
+        return (
+            vec![format!(
+                "{} values for {} points",
+                values.len(),
+                points.len()
+            )],
+            0,
+            0.0,
+        );
+    }
+    let d = |a: [f32; 3]| a.map(|x| x as f64);
+    for (i, p) in points.iter().enumerate() {
+        let got = |k: usize| values[12 * i + k] as f64;
+        let (n, v, pos) = (d(p.n), d(p.v), d(p.pos));
+        let nv = got(7);
+        let what = format!("point {i} (r {}, n.v {nv})", p.r);
+        let mut check = |name: &str, gpu: f64, want: f64, bound: f64| {
+            count += 1;
+            if !within(gpu - want, bound) {
+                fails.push(format!(
+                    "{what}: {name} {gpu} vs {want}: off by {:.3e} > {bound:.3e}",
+                    (gpu - want).abs()
+                ));
+            }
+        };
+        // n·v: a dot product of f32 vectors, 3U of |n||v| (≈ 1) and the input's own rounding
+        check("n.v", nv, dot(n, v), 8.0 * U);
+        // the texels, at the GPU's n·v (the lookup's own tests are above)
+        let (t1, t2) = h.lookup(nv, p.r as f64).expect("a lookup");
+        let x = [p.r as f64, nv];
+        let tol1 = gpu_tolerance(&matrix.lut, &x, false);
+        let tol2 = gpu_tolerance(&schlick.lut, &x, false);
+        for c in 0..4 {
+            check(&format!("ltc_1[{c}]"), got(c), t1[c], tol1[c]);
+        }
+        check("norm", got(4), t2[0], tol2[0]);
+        check("fresnel", got(5), t2[1], tol2[1]);
+        // the integral
+        let frame = ltc_frame(n, v);
+        let q = p.verts.map(|w| {
+            let e = [
+                w[0] as f64 - pos[0],
+                w[1] as f64 - pos[1],
+                w[2] as f64 - pos[2],
+            ];
+            frame.map(|t| dot(t, e))
+        });
+        let e = ltc_integral(t1, &q);
+        let be = ltc_integral_bound(t1, &tol1, &q);
+        check("integral", got(6), e, be);
+        worst = worst.max((got(6) - e).abs() / be);
+        // the specular: (f0 norm + (1 − f0) fresnel) max(E, 0) per channel; the weight is
+        // within |f0| tol_norm + |1 − f0| tol_fresnel + 4U of the lookup's, the product 2U
+        for (k, f0) in [p.f0 as f64, 0.5, 0.0].into_iter().enumerate() {
+            let w = f0 * t2[0] + (1.0 - f0) * t2[1];
+            let bw = f0.abs() * tol2[0] + (1.0 - f0).abs() * tol2[1] + 4.0 * U * w.abs();
+            let bound = bw * e.max(0.0) + w.abs() * be + 2.0 * U * (w * e).abs();
+            check(&format!("specular[{k}]"), got(8 + k), w * e.max(0.0), bound);
+        }
+    }
+    (fails, count, worst)
+}
+
+/// The LTC snippets evaluate area lights on a software GPU as the library does: the heitz-ltc
+/// preset's layout at 16 × 16, its KTX2 textures uploaded as WebGPU textures (webgpu.js) and
+/// as three.js textures (threejs.js' `loadTable`, WebGL2), as for every table, the generated
+/// WGSL (compute shader) and GLSL (RawShaderMaterial) `ltc_1_ltc_minv`, `ltc_1_ltc_polygon`,
+/// `ltc_2_lookup` and `ltc_2_schlick_weight` evaluated for 15 polygons × 6 views × 5
+/// roughnesses, and every
+/// value compared with the documented lookup ([`HeitzTable::lookup`] of the stored texels)
+/// and the library's polygon integral (`kernels::ltc_polygon`) to the bounds argued in
+/// [`gpu_tolerance`] and [`ltc_integral_bound`]. The negative controls must fail: the
+/// matrix texture y-flipped, M⁻¹ rebuilt transposed, and θ/sin θ computed the textbook way,
+/// `acos(x)/√(1 − x²)` (SwiftShader's acos and the cancellation in 1 − x² near x = ±1).
+///
+/// [`HeitzTable::lookup`]: brdfbake::table::ltc_layout::HeitzTable::lookup
+#[test]
+fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
+    if !judges::chromium() {
+        return;
+    }
+    let Some(three) = judges::three_js() else {
+        return;
+    };
+    let work = tempfile::tempdir().unwrap();
+    let d = work.path();
+    let mut preset: Value = serde_json::from_str(
+        &std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/engines/heitz-ltc.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    for t in preset["tables"].as_array_mut().unwrap() {
+        for a in t["axes"].as_object_mut().unwrap().values_mut() {
+            a["size"] = json!(16);
+        }
+        t.as_object_mut().unwrap().remove("shipped");
+    }
+    std::fs::write(d.join("ltc16.json"), preset.to_string()).unwrap();
+    bake(d, "out", &["ltc16.json".to_string()]);
+    let matrix = table(d, "out", "ltc16", "ltc_1", "");
+    let schlick = table(d, "out", "ltc16", "ltc_2", "");
+    assert_eq!(matrix.channels, ["m00", "m20", "m02", "m22"]);
+    assert_eq!(schlick.channels, ["norm", "fresnel", "zero", "sphere"]);
+    let points = ltc_points();
+    assert!(points.len() >= 400);
+
+    let mut files: HashMap<String, (Vec<u8>, &'static str)> = HashMap::new();
+    let gpu_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gpu");
+    let index = std::fs::read_to_string(gpu_dir.join("index.html"))
+        .unwrap()
+        .replace("/harness.js", "/ltc.js");
+    assert!(index.contains("/ltc.js"));
+    files.insert(
+        "/index.html".into(),
+        (index.into_bytes(), content_type("x.html")),
+    );
+    for f in ["ltc.js", "webgpu.js", "threejs.js"] {
+        files.insert(
+            format!("/{f}"),
+            (std::fs::read(gpu_dir.join(f)).unwrap(), content_type(f)),
+        );
+    }
+    let ktx1 = std::fs::read(&matrix.ktx2).unwrap();
+    let ktx2 = std::fs::read(&schlick.ktx2).unwrap();
+    files.insert(
+        "/ltc_1.ktx2".into(),
+        (ktx1.clone(), "application/octet-stream"),
+    );
+    files.insert(
+        "/ltc_1-flipped.ktx2".into(),
+        (
+            mutate_ktx2(&ktx1, Mutation::FlipY),
+            "application/octet-stream",
+        ),
+    );
+    files.insert("/ltc_2.ktx2".into(), (ktx2, "application/octet-stream"));
+    // the snippets as written, and the broken variants: [WGSL, GLSL]
+    let minv = [
+        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.g), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.b, 0.0, t.a))",
+        "mat3(vec3(t.r, 0.0, t.g), vec3(0.0, 1.0, 0.0), vec3(t.b, 0.0, t.a))",
+    ];
+    let transposed = [
+        "mat3x3<f32>(vec3<f32>(t.r, 0.0, t.b), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(t.g, 0.0, t.a))",
+        "mat3(vec3(t.r, 0.0, t.b), vec3(0.0, 1.0, 0.0), vec3(t.g, 0.0, t.a))",
+    ];
+    let theta_sin = [
+        "fn ltc_1_ltc_theta_sin(x: f32) -> f32 {\n",
+        "highp float ltc_1_ltc_theta_sin(highp float x)\n{\n",
+    ];
+    let textbook = [
+        "    return acos(x) * inverseSqrt(max(1.0 - x * x, 1e-30));\n",
+        "    return acos(x) * inversesqrt(max(1.0 - x * x, 1e-30));\n",
+    ];
+    let sources = [&matrix.wgsl, &matrix.glsl];
+    for k in 0..2 {
+        assert!(sources[k].contains(minv[k]), "{}", sources[k]);
+        assert!(sources[k].contains(theta_sin[k]), "{}", sources[k]);
+    }
+    let both = |f: &dyn Fn(usize) -> String| [f(0), f(1)];
+    let variants = [
+        (
+            "as generated",
+            "/ltc_1.ktx2",
+            both(&|k| sources[k].to_string()),
+        ),
+        (
+            "ltc_1 y-flipped",
+            "/ltc_1-flipped.ktx2",
+            both(&|k| sources[k].to_string()),
+        ),
+        (
+            "M^-1 transposed",
+            "/ltc_1.ktx2",
+            both(&|k| sources[k].replace(minv[k], transposed[k])),
+        ),
+        (
+            "theta/sin(theta) as acos(x)/sqrt(1 - x^2)",
+            "/ltc_1.ktx2",
+            both(&|k| {
+                sources[k].replace(theta_sin[k], &format!("{}{}", theta_sin[k], textbook[k]))
+            }),
+        ),
+    ];
+    let apis = ["webgpu", "webgl"];
+    let flat: Vec<f32> = points
+        .iter()
+        .flat_map(|p| {
+            let mut v = vec![p.n[0], p.n[1], p.n[2], p.r, p.v[0], p.v[1], p.v[2], p.f0];
+            v.extend([p.pos[0], p.pos[1], p.pos[2], 0.0]);
+            for q in &p.verts {
+                v.extend([q[0], q[1], q[2], 0.0]);
+            }
+            v
+        })
+        .collect();
+    // case id = 2 × variant + api
+    let mut list: Vec<Value> = Vec::new();
+    for (_, url, snippet) in &variants {
+        for (k, api) in apis.iter().enumerate() {
+            let schlick_snippet = if k == 0 { &schlick.wgsl } else { &schlick.glsl };
+            list.push(json!({"id": list.len(), "api": api, "matrix_ktx2": url,
+                   "schlick_ktx2": "/ltc_2.ktx2", "matrix_snippet": snippet[k],
+                   "schlick_snippet": schlick_snippet, "prefix_matrix": "ltc_1",
+                   "prefix_schlick": "ltc_2", "points": flat}));
+        }
+    }
+    files.insert(
+        "/cases.json".into(),
+        (
+            Value::Array(list.clone()).to_string().into_bytes(),
+            "application/json",
+        ),
+    );
+    let site = Arc::new(Site {
+        files,
+        three,
+        results: Mutex::new(Results::default()),
+        changed: Condvar::new(),
+    });
+    let (results, log) = run_browser(site);
+    let info = results.done.clone().unwrap().unwrap_or_else(|e| {
+        panic!("the page failed: {e}\n{log}");
+    });
+    eprintln!("browser: {info}");
+    assert_eq!(info["float32_filterable"], true, "{info}");
+    let mut failures = Vec::new();
+    for (id, c) in list.iter().enumerate() {
+        let what = format!("{} [{}]", variants[id / 2].0, c["api"].as_str().unwrap());
+        let values = match results.values.get(&id) {
+            Some(Ok(v)) => v,
+            Some(Err(e)) => panic!("{what}: {e}\n{log}"),
+            None => panic!("{what}: no result\n{log}"),
+        };
+        let (f, n, worst) = compare_ltc(&matrix, &schlick, &points, values);
+        eprintln!(
+            "LTC {what}: {} of {n} comparisons fail; largest |GPU - library| / bound of the integral {worst:.3}{}",
+            f.len(),
+            f.iter().take(3).map(|m| format!("\n  {m}")).collect::<String>()
+        );
+        if id < 2 {
+            assert!(n >= 12 * points.len() - points.len(), "{n}");
+            failures.extend(f.into_iter().take(20).map(|m| format!("{what}: {m}")));
+        } else if !f
+            .iter()
+            .any(|m| m.contains("integral") || m.contains("ltc_1"))
+        {
+            failures.push(format!("{what}: the comparisons did not catch it"));
+        }
+    }
+    // the set has lights crossing the horizon, lights wholly below it and lit ones
+    let values = match results.values.get(&0) {
+        Some(Ok(v)) => v,
+        _ => unreachable!("checked above"),
+    };
+    let lit = (0..points.len())
+        .filter(|&i| values[12 * i + 6] > 1e-3)
+        .count();
+    let zero = (0..points.len())
+        .filter(|&i| values[12 * i + 6] == 0.0)
+        .count();
+    let negative = (0..points.len())
+        .filter(|&i| values[12 * i + 6] < -1e-3)
+        .count();
+    eprintln!("LTC: {lit} lit points, {zero} unlit, {negative} with the reverse winding");
+    assert!(
+        lit >= points.len() / 4 && zero >= 30 && negative >= 10,
+        "{lit} {zero} {negative}"
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}\nchromium log:\n{log}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -7,6 +7,7 @@ pub mod ktx2;
 pub mod png;
 pub mod png_data;
 pub mod shader;
+pub mod shader_ltc;
 pub mod source;
 pub mod unorm;
 

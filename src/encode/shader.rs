@@ -37,7 +37,7 @@
 use super::source::{
     attribute_lines, axis_lines, check_table, comment_lines, identifier, scale_attribute,
 };
-use super::{EncodeError, Encoder};
+use super::{shader_ltc, EncodeError, Encoder};
 use crate::lut::{Axis, Convention, Lut, Warp};
 use std::fmt::Write as _;
 
@@ -140,16 +140,6 @@ impl Encoder for ShaderSnippet {
                 reason: format!("a texture holds at most 4 channels, the table has {nc}"),
             });
         }
-        let mut out = String::new();
-        for line in self.documentation(lut, attributes) {
-            for l in comment_lines(&line) {
-                if l.is_empty() {
-                    out.push_str("//\n");
-                } else {
-                    let _ = writeln!(out, "// {l}");
-                }
-            }
-        }
         let params = parameter_names(lut);
         let name = lookup_function_name(&self.table_name);
         let g = Gen {
@@ -158,6 +148,47 @@ impl Encoder for ShaderSnippet {
             params: &params,
             scale: scale_attribute(attributes),
         };
+        // an `ltc` table's area-light functions
+        let kind = attributes
+            .iter()
+            .find(|(k, _)| k == "kind")
+            .map(|(_, v)| v.as_str());
+        let ltc = shader_ltc::applies(lut, kind).then(|| shader_ltc::Context {
+            lang: match self.lang {
+                ShaderLang::Glsl => shader_ltc::Lang::Glsl,
+                ShaderLang::Hlsl => shader_ltc::Lang::Hlsl,
+                ShaderLang::Wgsl => shader_ltc::Lang::Wgsl,
+            },
+            prefix: identifier(&self.table_name).to_ascii_lowercase(),
+            handles: g.handles(Storage::Texture2d),
+            handle_args: match self.lang {
+                ShaderLang::Glsl => TEXTURE.to_string(),
+                _ => format!("{TEXTURE}, {SAMPLER}"),
+            },
+            axis_params: g.axis_params(),
+            axis_args: params.clone(),
+            lut,
+        });
+        let mut out = String::new();
+        let mut documentation = self.documentation(lut, attributes);
+        if let Some(c) = &ltc {
+            // before the attributes
+            let at = documentation
+                .iter()
+                .rposition(|l| l == "Table attributes:")
+                .map_or(documentation.len(), |i| i - 1);
+            let lines = shader_ltc::documentation(c);
+            documentation.splice(at..at, lines);
+        }
+        for line in documentation {
+            for l in comment_lines(&line) {
+                if l.is_empty() {
+                    out.push_str("//\n");
+                } else {
+                    let _ = writeln!(out, "// {l}");
+                }
+            }
+        }
         out.push('\n');
         match lut.axes.len() {
             3 => {
@@ -166,6 +197,10 @@ impl Encoder for ShaderSnippet {
                 out.push_str(&g.function(&format!("{name}_array"), Storage::Array));
             }
             _ => out.push_str(&g.function(&name, Storage::Texture2d)),
+        }
+        if let Some(c) = &ltc {
+            out.push('\n');
+            out.push_str(&shader_ltc::code(c));
         }
         Ok(out.into_bytes())
     }
@@ -454,25 +489,21 @@ impl Gen<'_> {
         }
     }
 
-    /// The whole function.
-    fn function(&self, name: &str, storage: Storage) -> String {
-        let lut = self.lut;
-        let nc = lut.channels.len();
-        let ret = match self.lang {
-            ShaderLang::Glsl => format!("{GLSL_PRECISION} {}", vector_type(self.lang, nc)),
-            _ => vector_type(self.lang, nc),
-        };
-        let swizzle = &"rgba"[..nc];
-        let axis_params: Vec<String> = self
-            .params
+    /// The axis parameter declarations of the functions.
+    fn axis_params(&self) -> Vec<String> {
+        self.params
             .iter()
             .map(|p| match self.lang {
                 ShaderLang::Wgsl => format!("{p}: f32"),
                 ShaderLang::Glsl => format!("{GLSL_PRECISION} float {p}"),
                 ShaderLang::Hlsl => format!("float {p}"),
             })
-            .collect();
-        let handles = match (self.lang, storage) {
+            .collect()
+    }
+
+    /// The texture (and sampler) parameter declarations of a function sampling `storage`.
+    fn handles(&self, storage: Storage) -> String {
+        match (self.lang, storage) {
             (ShaderLang::Glsl, Storage::Texture2d) => {
                 format!("{GLSL_PRECISION} sampler2D {TEXTURE}")
             }
@@ -500,7 +531,20 @@ impl Gen<'_> {
             (ShaderLang::Wgsl, Storage::Array) => {
                 format!("{TEXTURE}: texture_2d_array<f32>, {SAMPLER}: sampler")
             }
+        }
+    }
+
+    /// The whole function.
+    fn function(&self, name: &str, storage: Storage) -> String {
+        let lut = self.lut;
+        let nc = lut.channels.len();
+        let ret = match self.lang {
+            ShaderLang::Glsl => format!("{GLSL_PRECISION} {}", vector_type(self.lang, nc)),
+            _ => vector_type(self.lang, nc),
         };
+        let swizzle = &"rgba"[..nc];
+        let axis_params = self.axis_params();
+        let handles = self.handles(storage);
         let params = format!("{handles}, {}", axis_params.join(", "));
         let mut f = match self.lang {
             ShaderLang::Wgsl => format!("fn {name}({params}) -> {ret} {{\n"),

@@ -149,3 +149,6 @@ export async function runWebGL(cases, report) {
     renderer.dispose();
     return info;
 }
+
+// (for tests/gpu/ltc.js: two tables in one shader)
+export { loadTable };

@@ -121,3 +121,6 @@ export async function runWebGPU(cases, report) {
     }
     return info;
 }
+
+// (for tests/gpu/ltc.js: two tables in one shader)
+export { createTableView, tableDevice, tableSampler };
