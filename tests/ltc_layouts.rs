@@ -6,16 +6,26 @@
 //! storage's precision — f32 as written, and f16 as EEVEE's RGBA16F utility texture and
 //! three.js' `LTC_HALF_*` hold it. A transposed, flipped or unremapped lookup and a matrix
 //! rebuilt by rows or with the wrong normalization fail the same bound.
+//!
+//! And against the values EEVEE ships (28 numbers quoted in
+//! tests/data/engines/eevee/ltc_quotes.txt, GPL-2.0-or-later, with attribution): EEVEE's
+//! `ltc_mat_ggx` and `ltc_mag_ggx` are Heitz's published fit (ltc_code's `ltc.js`) printed
+//! to 6 decimals, its `ltc_disk_integral` is the closed-form sphere table brdfbake computes,
+//! its norm is the published Monte Carlo estimate, and at the quoted texels brdfbake's fit
+//! lights the test set's polygons closer to the ground truth than EEVEE's matrices do.
 
 #[path = "common/cli.rs"]
 mod cli;
 #[path = "common/judges.rs"]
 mod judges;
 
+use brdfbake::kernels::ltc_check::{lit_ltc, lit_reference, test_lights};
 use brdfbake::kernels::ltc_fit::{fit_line, LtcTexel};
 use brdfbake::kernels::ltc_polygon::clipped_sphere_table;
+use brdfbake::model::ltc::Ltc;
+use brdfbake::table::albedo::directional_albedo;
 use brdfbake::table::ltc::{fit_options, sphere_at, texel_position};
-use brdfbake::table::ltc_layout::{heitz_alpha, heitz_row_mu};
+use brdfbake::table::ltc_layout::{heitz_alpha, heitz_row_mu, HeitzTable};
 use brdfbake::table::spec::TableSpec;
 use cli::run;
 use rayon::prelude::*;
@@ -437,4 +447,209 @@ fn engine_layouts_round_trip() {
             }
         }
     }
+}
+
+/// One texel quoted from EEVEE's `eevee_lut.cc`: table, row (texture v), column (u), values.
+struct Quote {
+    table: String,
+    row: usize,
+    col: usize,
+    values: Vec<f64>,
+}
+
+fn eevee_quotes() -> Vec<Quote> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/engines/eevee/ltc_quotes.txt");
+    std::fs::read_to_string(p)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            Quote {
+                table: f[0].to_string(),
+                row: f[1].parse().unwrap(),
+                col: f[2].parse().unwrap(),
+                values: f[3..].iter().map(|x| x.parse().unwrap()).collect(),
+            }
+        })
+        .collect()
+}
+
+fn heitz_js() -> HeitzTable {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ltc/heitz_ltc.js");
+    HeitzTable::from_js(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+/// The largest |difference| between a quote and `of(row, col)` (the same number of values).
+fn worst(q: &Quote, of: impl Fn(usize, usize) -> Vec<f64>) -> f64 {
+    let v = of(q.row, q.col);
+    assert_eq!(v.len(), q.values.len());
+    q.values
+        .iter()
+        .zip(&v)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+}
+
+/// EEVEE's quoted LTC texels against Heitz's published table, brdfbake's sphere table and
+/// albedo, and (for the matrices) the lit value of polygon lights.
+#[test]
+fn eevee_ships_heitz_fit_and_brdfbake_lights_better() {
+    let quotes = eevee_quotes();
+    assert_eq!(quotes.iter().map(|q| q.values.len()).sum::<usize>(), 28);
+    let heitz = heitz_js();
+    let at = |row: usize, col: usize| col + row * N;
+
+    // (1) ltc_mat_ggx = Heitz's ltc_1 and ltc_mag_ggx = Heitz's (ltc_2.x, ltc_2.y) at the same
+    // [row][column], to half a unit of EEVEE's 6th decimal (5e-7; 1e-9 for the decimal
+    // numbers' binary representation): EEVEE ships ltc_code's fit, number for number, in
+    // Heitz's texel order (row = √(1 − cos θ), column = roughness). The control, the same
+    // texel with row and column swapped, is off by far more (the off-diagonal quotes).
+    // (2) ltc_disk_integral = Heitz's ltc_2.w at [length][z] to the same 5e-7, and brdfbake's
+    // closed-form sphere table at z = 2·col/63 − 1, length row/63 within 5e-6: Heitz's sphere
+    // channel agrees with it to 2e-6 over the whole table (tests/ltc_table.rs, `compare`),
+    // plus EEVEE's rounding (5e-7). The transposed control misses.
+    let printed = 5e-7 + 1e-9;
+    let mut transposed_misses = 0;
+    for q in &quotes {
+        let (heitz_of, control): (Box<dyn Fn(usize, usize) -> Vec<f64>>, bool) =
+            match q.table.as_str() {
+                "ltc_mat_ggx" => (
+                    Box::new(|r, c| heitz.ltc_1[at(r, c)].to_vec()),
+                    q.row != q.col,
+                ),
+                "ltc_mag_ggx" => (
+                    Box::new(|r, c| heitz.ltc_2[at(r, c)][..2].to_vec()),
+                    q.row != q.col,
+                ),
+                "ltc_disk_integral" => {
+                    let closed = |r: usize, c: usize| {
+                        let (z, len) = (2.0 * c as f64 / 63.0 - 1.0, r as f64 / 63.0);
+                        vec![clipped_sphere_table(z, len).unwrap()]
+                    };
+                    let w = worst(q, closed);
+                    assert!(w <= 5e-6, "{} [{}][{}]: {w}", q.table, q.row, q.col);
+                    (Box::new(|r, c| vec![heitz.ltc_2[at(r, c)][3]]), true)
+                }
+                other => panic!("unexpected table {other}"),
+            };
+        let w = worst(q, &heitz_of);
+        assert!(
+            w <= printed,
+            "{} [{}][{}]: {w} from Heitz's",
+            q.table,
+            q.row,
+            q.col
+        );
+        if control {
+            let t = worst(q, |r, c| heitz_of(c, r));
+            assert!(t > 100.0 * printed, "{} transposed: {t}", q.table);
+            transposed_misses += 1;
+        }
+    }
+    assert_eq!(
+        transposed_misses, 8,
+        "every off-diagonal quote is a control"
+    );
+
+    // The eevee-ltc-ggx preset's fit at the quoted texels: each quoted column's views fitted
+    // along the bake's path (fit_line over the preset's view axis, from cos θ = 1 down).
+    let (_, text) = brdfbake::presets::ENGINES
+        .iter()
+        .find(|(n, _)| *n == "eevee-ltc-ggx")
+        .unwrap();
+    let preset = brdfbake::preset::parse(text, "eevee-ltc-ggx", "eevee-ltc-ggx").unwrap();
+    let spec = &preset.tables[0].spec;
+    assert_eq!(spec.name, "ltc_mat_ggx");
+    let opts = fit_options(spec);
+    let mus = spec.axes[0].coords();
+    let mats: Vec<&Quote> = quotes.iter().filter(|q| q.table == "ltc_mat_ggx").collect();
+    let ours: Vec<LtcTexel> = mats
+        .par_iter()
+        .map(|q| {
+            let brdf = spec.model.brdf(spec.axes[1].alpha(q.col).unwrap()).unwrap();
+            fit_line(&brdf, &mus, &opts.shape(), &opts).unwrap()[q.row]
+        })
+        .collect();
+
+    // (3) the norm: brdfbake's is the albedo by its own integrator (the same number to the
+    // bit: the ltc kind's norm channel is that integral), EEVEE's is ltc_code's Monte Carlo
+    // estimate; at the grazing texel [63][63] (α = 1, cos θ = 7.96e-4) EEVEE's is off by more
+    // than a percent of it — a fact of the shipped numbers, printed for the record.
+    for (q, t) in mats.iter().zip(&ours) {
+        let mag = quotes
+            .iter()
+            .find(|m| m.table == "ltc_mag_ggx" && (m.row, m.col) == (q.row, q.col))
+            .expect("a magnitude quote at every matrix quote");
+        let alpha = spec.axes[1].alpha(q.col).unwrap();
+        let (e, _, _) =
+            directional_albedo(&spec.model.brdf(alpha).unwrap(), mus[q.row], spec.tolerance);
+        assert_eq!(t.norm, e[0], "[{}][{}]", q.row, q.col);
+        eprintln!(
+            "[{}][{}] cos {:.6} alpha {:.6}: albedo {:.7}, EEVEE's norm {} ({:+.2e})",
+            q.row,
+            q.col,
+            mus[q.row],
+            alpha,
+            e[0],
+            mag.values[0],
+            mag.values[0] - e[0]
+        );
+        if (q.row, q.col) == (63, 63) {
+            assert!(
+                (mag.values[0] - e[0]).abs() > 1e-2 * e[0],
+                "EEVEE's grazing norm {} vs {}",
+                mag.values[0],
+                e[0]
+            );
+        }
+    }
+
+    // (4) the lit value of the test set's lights (kernels/ltc_check.rs: 200 quads and
+    // triangles, some across the horizon) at the quoted texels, through brdfbake's LTC and
+    // norm and through EEVEE's quoted matrix and norm, against the ground truth by adaptive
+    // quadrature to relative 1e-6 (far below the LTCs' errors, which are percents). Relative
+    // error |X − Y| / max(Y, 10⁻³·albedo), as tests/ltc_table.rs measures it (lights holding
+    // less than 0.1% of the albedo judged absolutely). Asserted: brdfbake's mean and 90th
+    // percentile strictly below EEVEE's (deterministic numbers: fixed lights, fixed rules).
+    let lights = test_lights();
+    let cases: Vec<(usize, usize)> = (0..mats.len())
+        .flat_map(|k| (0..lights.len()).map(move |l| (k, l)))
+        .collect();
+    let errors: Vec<[f64; 2]> = cases
+        .par_iter()
+        .map(|&(k, l)| {
+            let q = mats[k];
+            let mag = quotes
+                .iter()
+                .find(|m| m.table == "ltc_mag_ggx" && (m.row, m.col) == (q.row, q.col))
+                .unwrap();
+            let alpha = spec.axes[1].alpha(q.col).unwrap();
+            let brdf = spec.model.brdf(alpha).unwrap();
+            let light = &lights[l];
+            let truth = lit_reference(&brdf, alpha, mus[q.row], light, 1e-6)
+                .unwrap()
+                .value;
+            let v = &q.values;
+            let theirs = Ltc::from_heitz_texel([v[0], v[1], v[2], v[3]]).unwrap();
+            let floor = (1e-3 * ours[k].norm).max(truth);
+            let rel = |x: f64| (x - truth).abs() / floor;
+            [
+                rel(lit_ltc(&ours[k].ltc, ours[k].norm, light).unwrap()),
+                rel(lit_ltc(&theirs, mag.values[0], light).unwrap()),
+            ]
+        })
+        .collect();
+    let stat = |k: usize| {
+        let mut v: Vec<f64> = errors.iter().map(|e| e[k]).collect();
+        v.sort_by(f64::total_cmp);
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        (mean, v[(0.9 * v.len() as f64).ceil() as usize - 1])
+    };
+    let (b, e) = (stat(0), stat(1));
+    eprintln!(
+        "lit error over {} cases at EEVEE's quoted texels (mean, p90): brdfbake {b:?}, EEVEE {e:?}",
+        errors.len()
+    );
+    assert!(b.0 < e.0 && b.1 < e.1, "brdfbake {b:?} vs EEVEE {e:?}");
 }
