@@ -480,6 +480,9 @@ fn heitz_js() -> HeitzTable {
     HeitzTable::from_js(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
 
+/// A table's values at `(row, column)`.
+type TexelOf<'a> = dyn Fn(usize, usize) -> Vec<f64> + 'a;
+
 /// The largest |difference| between a quote and `of(row, col)` (the same number of values).
 fn worst(q: &Quote, of: impl Fn(usize, usize) -> Vec<f64>) -> f64 {
     let v = of(q.row, q.col);
@@ -512,27 +515,26 @@ fn eevee_ships_heitz_fit_and_brdfbake_lights_better() {
     let printed = 5e-7 + 1e-9;
     let mut transposed_misses = 0;
     for q in &quotes {
-        let (heitz_of, control): (Box<dyn Fn(usize, usize) -> Vec<f64>>, bool) =
-            match q.table.as_str() {
-                "ltc_mat_ggx" => (
-                    Box::new(|r, c| heitz.ltc_1[at(r, c)].to_vec()),
-                    q.row != q.col,
-                ),
-                "ltc_mag_ggx" => (
-                    Box::new(|r, c| heitz.ltc_2[at(r, c)][..2].to_vec()),
-                    q.row != q.col,
-                ),
-                "ltc_disk_integral" => {
-                    let closed = |r: usize, c: usize| {
-                        let (z, len) = (2.0 * c as f64 / 63.0 - 1.0, r as f64 / 63.0);
-                        vec![clipped_sphere_table(z, len).unwrap()]
-                    };
-                    let w = worst(q, closed);
-                    assert!(w <= 5e-6, "{} [{}][{}]: {w}", q.table, q.row, q.col);
-                    (Box::new(|r, c| vec![heitz.ltc_2[at(r, c)][3]]), true)
-                }
-                other => panic!("unexpected table {other}"),
-            };
+        let (heitz_of, control): (Box<TexelOf>, bool) = match q.table.as_str() {
+            "ltc_mat_ggx" => (
+                Box::new(|r, c| heitz.ltc_1[at(r, c)].to_vec()),
+                q.row != q.col,
+            ),
+            "ltc_mag_ggx" => (
+                Box::new(|r, c| heitz.ltc_2[at(r, c)][..2].to_vec()),
+                q.row != q.col,
+            ),
+            "ltc_disk_integral" => {
+                let closed = |r: usize, c: usize| {
+                    let (z, len) = (2.0 * c as f64 / 63.0 - 1.0, r as f64 / 63.0);
+                    vec![clipped_sphere_table(z, len).unwrap()]
+                };
+                let w = worst(q, closed);
+                assert!(w <= 5e-6, "{} [{}][{}]: {w}", q.table, q.row, q.col);
+                (Box::new(|r, c| vec![heitz.ltc_2[at(r, c)][3]]), true)
+            }
+            other => panic!("unexpected table {other}"),
+        };
         let w = worst(q, &heitz_of);
         assert!(
             w <= printed,
