@@ -625,7 +625,7 @@ fn ltc_section(table: &PresetTable, fit: Option<&Lut>) -> Value {
     let index = |c: crate::table::LtcChannel| chans.iter().position(|&x| x == c);
     let mut v = json!({
         "channels": chans.iter().map(|c| c.name()).collect::<Vec<_>>(),
-        "normalization": "M^-1 = [[a, 0, b], [0, c, 0], [d, 0, 1]] (rows) divided by its middle entry c: m00 = a/c, m20 = d/c, m02 = b/c, m22 = 1/c (Heitz's ltc_1, three.js' ltc_1, EEVEE's ltc_mat_ggx, Filament's first layer)",
+        "normalization": "M^-1 = [[a, 0, b], [0, c, 0], [d, 0, 1]] (rows) divided by its middle entry c: m00 = a/c, m20 = d/c, m02 = b/c, m22 = 1/c (Heitz's ltc_1, three.js' ltc_1, EEVEE's ltc_mat_ggx)",
         "frame": "the normal is +z, the view lies in the xz-plane at positive x: x = normalize(V - N (N.V)), y = cross(N, x)",
         "fit": {
             "method": "deterministic Levenberg-Marquardt on relative residuals of a fixed hemisphere rule's nodes and fixed probe lights, warm-started along the views of each roughness from the largest cos theta_v down (src/kernels/ltc_fit.rs; docs/presets.md, Area-light tables)",

@@ -71,6 +71,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/cycles-glass-eavg.json"),
     ),
     (
+        "eevee-ltc-ggx",
+        include_str!("../presets/engines/eevee-ltc-ggx.json"),
+    ),
+    (
         "eevee-bsdf-split-sum-ggx",
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),

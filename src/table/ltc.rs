@@ -8,7 +8,7 @@
 //! largest μ down, one roughness per task, so the bits do not depend on the thread count),
 //! and the channels the preset's `ltc.channels` lists ([`LtcChannel`]):
 //! * `m00`, `m20`, `m02`, `m22`: `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]` divided by its middle
-//!   entry `c` (Heitz's normalization, which three.js, EEVEE and Filament keep): `a/c`,
+//!   entry `c` (Heitz's normalization, which three.js and EEVEE keep): `a/c`,
 //!   `d/c`, `b/c`, `1/c` ([`Ltc::heitz_texel`](crate::model::ltc::Ltc::heitz_texel)). A
 //!   shader rebuilds `M⁻¹/c = mat3(vec3(m00, 0, m20), vec3(0, 1, 0), vec3(m02, 0, m22))`
 //!   (columns), in the frame with the normal +z and the view in the xz-plane at positive x;
@@ -19,9 +19,10 @@
 //! * `sphere`: the horizon-clipped sphere table ([`clipped_sphere_table`]) at
 //!   `z = 2·t_r − 1`, `len = t_v`, where `t_r`, `t_v` are the texel's position in its
 //!   roughness and view axes (`(p − lo)/(hi − lo)` of its parameter: `i/(n − 1)` on an
-//!   endpoints axis). Heitz's `ltc_2` and Filament's second layer keep this table in their 4th
-//!   channel over the same texel grid (`fit/fitLTC.cpp`, `genSphereTab`); it is not a
-//!   function of (μ, α) but of the texture coordinate;
+//!   endpoints axis). Heitz's `ltc_2` keeps this table in its 4th channel over the same
+//!   texel grid (`fit/fitLTC.cpp`, `genSphereTab`; EEVEE's `ltc_disk_integral` is the same
+//!   numbers as a table of its own, the `ltc-sphere` kind); it is not a function of (μ, α)
+//!   but of the texture coordinate;
 //! * `zero`: 0 (the padding of Heitz's `ltc_2.z`).
 //!
 //! The matrix channels carry no quadrature error (they are the fit's result, exactly as
