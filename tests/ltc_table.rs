@@ -321,8 +321,13 @@ fn bad_ltc_tables_are_input_errors() {
 /// `verify` and `probe` of an ltc table: the norm, Fresnel and sphere channels are
 /// recomputed and within 1e-6 (the sphere channel at its texel's unclamped position: Heitz's
 /// last view row is clamped to θ = 1.57 but its sphere value is the row's, t = 1); the
-/// matrix entries, which have no exact value, are said to be not recomputed — never a NaN
-/// error, never a failure.
+/// matrix entries, which have no exact value, are checked against a refit of their
+/// roughness lines (the fit's fixed path gives the same f64s, so the stored f32 texel is
+/// within half an f32 ulp, far inside verify's 1e-6), and the sidecar's per-texel fit error
+/// against the refit's to its printed 3 significant digits (5e-3 relative) — never a NaN,
+/// never a failure. Controls: a sidecar whose fit error was edited (one texel's lit_rms
+/// doubled) and one whose model was changed to Beckmann (the refit's matrices are then
+/// Beckmann's, not the stored GGX ones) both fail verify.
 #[test]
 fn verify_and_probe_know_the_fit_has_no_exact_value() {
     let (dir, out) = bake(&heitz_preset(8));
@@ -333,11 +338,56 @@ fn verify_and_probe_know_the_fit_has_no_exact_value() {
         assert!(o.status.success(), "{t}: {text}{}", cli::stderr(&o));
         assert!(!text.contains("NaN"), "{t}: {text}");
         if t == "ltc_1" {
-            assert!(text.contains("not recomputed"), "{text}");
+            for c in ["m00", "m20", "m02", "m22"] {
+                let line = text
+                    .lines()
+                    .find(|l| l.trim_start().starts_with(c))
+                    .unwrap();
+                assert!(line.contains("refit") && line.ends_with(" ok"), "{text}");
+            }
+            for c in ["objective", "l3", "lit_rms", "lit_max"] {
+                let line = text
+                    .lines()
+                    .find(|l| l.contains(&format!("fit error {c} ")))
+                    .unwrap_or_else(|| panic!("{c}: {text}"));
+                assert!(line.ends_with(" ok"), "{text}");
+            }
         } else {
             assert!(text.contains("sphere") && text.contains(" ok"), "{text}");
         }
     }
+    // the controls
+    let sidecar = out.join("ltc_1.json");
+    let original = std::fs::read_to_string(&sidecar).unwrap();
+    let edit = |f: &dyn Fn(&mut Value), expect: &str| {
+        let mut v: Value = serde_json::from_str(&original).unwrap();
+        f(&mut v);
+        // sealed again (as no bake would write it), so that verify reads what it describes
+        let exr = std::fs::read(out.join("ltc_1.exr")).unwrap();
+        let sealed = brdfbake::digest::seal(v, &[("ltc_1.exr", exr.as_slice())]);
+        std::fs::write(&sidecar, sealed).unwrap();
+        let o = run(dir.path(), &["verify", sidecar.to_str().unwrap(), "--all"]);
+        let text = String::from_utf8_lossy(&o.stdout).to_string();
+        assert!(!o.status.success(), "{expect}: {text}");
+        assert!(
+            cli::stderr(&o).contains(expect),
+            "{expect}: {}",
+            cli::stderr(&o)
+        );
+    };
+    edit(
+        &|v| {
+            let rows = &mut v["ltc"]["fit_error"]["lit_rms"]["rows"][3];
+            let r = rows.as_str().unwrap().to_string();
+            let mut parts: Vec<String> = r.split(' ').map(str::to_string).collect();
+            let x: f64 = parts[2].parse().unwrap();
+            parts[2] = format!("{:.2e}", 2.0 * x);
+            *rows = parts.join(" ").into();
+        },
+        "ltc.fit_error.lit_rms",
+    );
+    edit(&|v| v["model"]["ndf"]["name"] = "beckmann".into(), "m00");
+    std::fs::write(&sidecar, &original).unwrap();
     let o = run(
         dir.path(),
         &[

@@ -283,6 +283,53 @@ fn line(
         .collect())
 }
 
+/// Refits the roughness lines `js` (indices along the roughness axis) of the `ltc` table
+/// `spec` (validated) as the bake fits them — the same fixed path, so the same bits — for
+/// `verify`: per line, its texels in view order. `None` when `stop()` turned true first
+/// (checked before every line); an error names the line.
+pub fn refit_lines(
+    spec: &TableSpec,
+    js: &[usize],
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<Option<Vec<Vec<LtcTexel>>>, String> {
+    let opts = fit_options(spec);
+    let out: Vec<Option<LineResult>> = js
+        .par_iter()
+        .with_min_len(1)
+        .map(|&j| (!stop()).then(|| line(spec, j, true, &opts)))
+        .collect();
+    let mut lines = Vec::with_capacity(js.len());
+    for (j, l) in js.iter().zip(out) {
+        match l {
+            None => return Ok(None),
+            Some(Ok(t)) => lines.push(t),
+            Some(Err((_, msg))) => return Err(format!("refitting roughness texel {j}: {msg}")),
+        }
+    }
+    Ok(Some(lines))
+}
+
+/// The values of the kind's channels ([`ltc_channels`] order) that a refit texel gives: the
+/// matrix entries; NaN for the others (they are integrals, recomputed by [`exact_at`]).
+pub fn refit_matrix_values(spec: &TableSpec, t: &LtcTexel) -> Vec<f64> {
+    let h = t.ltc.heitz_texel();
+    ltc_channels(spec)
+        .iter()
+        .map(|c| match c {
+            LtcChannel::M00 => h[0],
+            LtcChannel::M20 => h[1],
+            LtcChannel::M02 => h[2],
+            LtcChannel::M22 => h[3],
+            _ => f64::NAN,
+        })
+        .collect()
+}
+
+/// The per-texel fit error of a refit texel, in [`fit_channels`]' order.
+pub fn refit_fit_values(t: &LtcTexel) -> [f64; 4] {
+    fit_values(&t.fit)
+}
+
 /// Bakes an `ltc` or `ltc-sphere` table (validated), checking `stop()` before every line
 /// (one roughness of an `ltc` table, one row of an `ltc-sphere` table). `limit`: the
 /// largest accepted error estimate.
