@@ -592,3 +592,38 @@ fn probe_gives_the_lit_value_of_a_polygon() {
     assert_eq!(a["table"], b["table"]);
     assert_eq!(a["exact"], b["exact"]);
 }
+
+/// `report` of an ltc preset: a section with the per-texel fit error of the table with
+/// matrix channels — a log-scale heatmap per error, and the median, 99th percentile and
+/// maximum the sidecar's `ltc.fit_error` states (the same deterministic fit, so the same
+/// numbers, printed to 4 digits) — and none for the table without (ltc_2: nothing fitted).
+#[test]
+fn report_plots_the_fit_error() {
+    let (dir, out) = bake(&heitz_preset(8));
+    let o = run(dir.path(), &["report", "p.json", "--out", "r", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let page = std::fs::read_to_string(dir.path().join("r/index.html")).unwrap();
+    assert_eq!(
+        page.matches("<h3>Fit error of the LTC").count(),
+        1,
+        "one table is fitted"
+    );
+    assert!(page.contains("Fit error of the LTC — ltc_1"));
+    let side: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("ltc_1.json")).unwrap()).unwrap();
+    for c in ["objective", "l3", "lit_rms", "lit_max"] {
+        assert!(
+            page.contains(&format!("ltc_1 — log10 {c} (fit error)")),
+            "{c}"
+        );
+        let s = &side["ltc"]["fit_error"][c];
+        let f = |k: &str| format!("{:.3e}", s[k].as_f64().unwrap());
+        let row = format!(
+            "<tr><td>{c}</td><td>{}</td><td>{}</td><td>{}</td>",
+            f("median"),
+            f("p99"),
+            f("max")
+        );
+        assert!(page.contains(&row), "{c}: no row {row}");
+    }
+}
