@@ -29,7 +29,7 @@ pub struct ProbeArgs {
     /// shading point in the frame with the normal +z and the view in the xz-plane at +x
     /// (the mirror direction is at -x), convex as seen from the point, either winding.
     /// Default: a square of side 1 at distance 2 facing the point, centred on the mirror
-    /// direction.
+    /// direction (lifted to 10° above the horizon at grazing views).
     #[arg(long, value_name = "X,Y,Z X,Y,Z X,Y,Z ...", allow_hyphen_values = true)]
     pub polygon: Option<String>,
     /// For an ltc table: Schlick's F0 of the lit value (F90 = 1: the table's
