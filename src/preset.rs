@@ -379,6 +379,23 @@ impl PresetTable {
         }
     }
 
+    /// The kind's `n` computed channels recovered from stored values (the inverse of
+    /// [`Self::stored_values`]): `None` for a computed channel no stored channel holds.
+    pub fn computed_from_stored(&self, stored: &[f64], n: usize) -> Vec<Option<f64>> {
+        let Some(chans) = &self.channels else {
+            return (0..n).map(|i| stored.get(i).copied()).collect();
+        };
+        let mut out = vec![None; n];
+        for (s, &v) in chans.iter().zip(stored) {
+            match *s {
+                StoredChannel::Computed(i) if i < n => out[i] = Some(v),
+                StoredChannel::OneMinus(i) if i < n => out[i] = Some(1.0 - v),
+                _ => {}
+            }
+        }
+        out
+    }
+
     /// Error estimates of computed values carried to the stored channels (0 for constants).
     pub fn stored_errors(&self, computed: &[f64]) -> Vec<f64> {
         match &self.channels {

@@ -321,8 +321,13 @@ fn bad_ltc_tables_are_input_errors() {
 /// `verify` and `probe` of an ltc table: the norm, Fresnel and sphere channels are
 /// recomputed and within 1e-6 (the sphere channel at its texel's unclamped position: Heitz's
 /// last view row is clamped to θ = 1.57 but its sphere value is the row's, t = 1); the
-/// matrix entries, which have no exact value, are said to be not recomputed — never a NaN
-/// error, never a failure.
+/// matrix entries, which have no exact value, are checked against a refit of their
+/// roughness lines (the fit's fixed path gives the same f64s, so the stored f32 texel is
+/// within half an f32 ulp, far inside verify's 1e-6), and the sidecar's per-texel fit error
+/// against the refit's to its printed 3 significant digits (5e-3 relative) — never a NaN,
+/// never a failure. Controls: a sidecar whose fit error was edited (one texel's lit_rms
+/// doubled) and one whose model was changed to Beckmann (the refit's matrices are then
+/// Beckmann's, not the stored GGX ones) both fail verify.
 #[test]
 fn verify_and_probe_know_the_fit_has_no_exact_value() {
     let (dir, out) = bake(&heitz_preset(8));
@@ -333,11 +338,56 @@ fn verify_and_probe_know_the_fit_has_no_exact_value() {
         assert!(o.status.success(), "{t}: {text}{}", cli::stderr(&o));
         assert!(!text.contains("NaN"), "{t}: {text}");
         if t == "ltc_1" {
-            assert!(text.contains("not recomputed"), "{text}");
+            for c in ["m00", "m20", "m02", "m22"] {
+                let line = text
+                    .lines()
+                    .find(|l| l.trim_start().starts_with(c))
+                    .unwrap();
+                assert!(line.contains("refit") && line.ends_with(" ok"), "{text}");
+            }
+            for c in ["objective", "l3", "lit_rms", "lit_max"] {
+                let line = text
+                    .lines()
+                    .find(|l| l.contains(&format!("fit error {c} ")))
+                    .unwrap_or_else(|| panic!("{c}: {text}"));
+                assert!(line.ends_with(" ok"), "{text}");
+            }
         } else {
             assert!(text.contains("sphere") && text.contains(" ok"), "{text}");
         }
     }
+    // the controls
+    let sidecar = out.join("ltc_1.json");
+    let original = std::fs::read_to_string(&sidecar).unwrap();
+    let edit = |f: &dyn Fn(&mut Value), expect: &str| {
+        let mut v: Value = serde_json::from_str(&original).unwrap();
+        f(&mut v);
+        // sealed again (as no bake would write it), so that verify reads what it describes
+        let exr = std::fs::read(out.join("ltc_1.exr")).unwrap();
+        let sealed = brdfbake::digest::seal(v, &[("ltc_1.exr", exr.as_slice())]);
+        std::fs::write(&sidecar, sealed).unwrap();
+        let o = run(dir.path(), &["verify", sidecar.to_str().unwrap(), "--all"]);
+        let text = String::from_utf8_lossy(&o.stdout).to_string();
+        assert!(!o.status.success(), "{expect}: {text}");
+        assert!(
+            cli::stderr(&o).contains(expect),
+            "{expect}: {}",
+            cli::stderr(&o)
+        );
+    };
+    edit(
+        &|v| {
+            let rows = &mut v["ltc"]["fit_error"]["lit_rms"]["rows"][3];
+            let r = rows.as_str().unwrap().to_string();
+            let mut parts: Vec<String> = r.split(' ').map(str::to_string).collect();
+            let x: f64 = parts[2].parse().unwrap();
+            parts[2] = format!("{:.2e}", 2.0 * x);
+            *rows = parts.join(" ").into();
+        },
+        "ltc.fit_error.lit_rms",
+    );
+    edit(&|v| v["model"]["ndf"]["name"] = "beckmann".into(), "m00");
+    std::fs::write(&sidecar, &original).unwrap();
     let o = run(
         dir.path(),
         &[
@@ -353,4 +403,227 @@ fn verify_and_probe_know_the_fit_has_no_exact_value() {
         !text.contains("NaN") && text.contains("no exact value"),
         "{text}"
     );
+}
+
+/// `probe --polygon` on an ltc table: the lit value of a polygon light from the table (the
+/// texels looked up as a shader does, M⁻¹ rebuilt, the clipped-polygon integral, times the
+/// norm or Schlick's combination) next to the exact value by quadrature, and their relative
+/// error; bad polygons are exit-2 errors naming `--polygon`.
+#[test]
+fn probe_gives_the_lit_value_of_a_polygon() {
+    const SIDE: usize = 16;
+    // one table holding the matrix, the norm and the Fresnel channel (the kind's default
+    // channels), Heitz's axes
+    let mut v: Value = serde_json::from_str(&heitz_preset(SIDE)).unwrap();
+    let t = &mut v["tables"][0];
+    t["ltc"]["channels"] = serde_json::json!(["m00", "m20", "m02", "m22", "norm", "fresnel"]);
+    t.as_object_mut().unwrap().remove("shipped");
+    v["tables"].as_array_mut().unwrap().truncate(1);
+    let (dir, out) = bake(&v.to_string());
+    let exr = out.join("ltc_1.exr");
+    let (texels, _) = read_exr(&exr);
+    let table = HeitzTable {
+        n: SIDE,
+        ltc_1: texels.iter().map(|t| [t[0], t[1], t[2], t[3]]).collect(),
+        ltc_2: texels.iter().map(|t| [t[4], t[5], 0.0, 0.0]).collect(),
+    };
+    let square = "-0.5,-0.5,1 0.5,-0.5,1 0.5,0.5,1 -0.5,0.5,1";
+    let heitz = heitz_js();
+    let probe = |at: &str, extra: &[&str]| -> Value {
+        let mut args = vec!["probe", exr.to_str().unwrap(), "--at", at, "--json"];
+        args.extend_from_slice(extra);
+        let o = run(dir.path(), &args);
+        assert!(o.status.success(), "{at} {extra:?}: {}", cli::stderr(&o));
+        serde_json::from_slice::<Value>(&o.stdout).unwrap()["lit"].clone()
+    };
+    let num = |v: &Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k}: {v}"));
+    // (μ, r): between texels on both axes, and one on a texel (μ = 1 − (3/15)², r = 0.4)
+    let points = [(0.5, 0.3), (0.85, 0.55), (0.96, 0.4), (0.2, 0.7)];
+    for (mu, r) in points {
+        let at = format!("cos_theta_v={mu},roughness={r}");
+        let alpha = r * r;
+        for (extra, f0) in [
+            (vec![], None),
+            (vec!["--polygon", square, "--f0", "0.04"], Some(0.04)),
+        ] {
+            let lit = probe(&at, &extra);
+            let light = brdfbake::kernels::ltc_check::PolygonLight {
+                verts: serde_json::from_value(lit["polygon"].clone()).unwrap(),
+                crosses_horizon: false,
+            };
+            assert_eq!(lit["polygon_default"], extra.is_empty());
+            assert_eq!(lit["norm_from"], "table");
+            // (1) the table's value, recomputed independently: the documented Heitz lookup
+            // of ltc_layout.rs (bilinear on the f32 texels, the same weights in another
+            // order: ~1e-15 relative), the closed form of ltc_polygon.rs. 1e-12 relative.
+            let (ltc, norm, fresnel) = table.ltc_at(mu, r).unwrap();
+            let ff =
+                brdfbake::kernels::ltc_polygon::ltc_polygon_integral(&ltc, &light.verts).unwrap();
+            let mag = f0.map_or(norm, |f0| f0 * norm + (1.0 - f0) * fresnel);
+            let close = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol * b.abs();
+            assert!(
+                close(num(&lit, "form_factor"), ff, 1e-12),
+                "{at}: {lit} vs {ff}"
+            );
+            assert!(close(num(&lit, "table"), mag * ff, 1e-12), "{at}: {lit}");
+            // (2) the exact value: the same quadrature (ltc_check.rs) at relative 1e-7 here
+            // against the probe's 1e-9: agree to 1e-6 (the estimates bound their errors)
+            let truth = brdfbake::kernels::ltc_check::lit_reference_schlick(
+                &ggx(alpha),
+                alpha,
+                mu,
+                &light,
+                f0,
+                1e-7,
+            )
+            .unwrap()
+            .value;
+            assert!(
+                close(num(&lit, "exact"), truth, 1e-6),
+                "{at}: {lit} vs {truth}"
+            );
+            let rel = num(&lit, "relative_error");
+            assert!(close(rel, (mag * ff - truth) / truth, 1e-5), "{at}: {lit}");
+            // (3) the default light holds the mirror direction, where the fit is best: the
+            // issue measured the published table's error with the peak inside the light at
+            // median 0.008; brdfbake's fit on this 16² grid, interpolated, gives 0.3% to 2%
+            // at the first three points (cos θv ≥ 0.5). Asserted 0.05; the control, the same lookup with m20 and m02
+            // swapped (a transposed layout), is off by > 0.05 at every point, so the bound
+            // sees a layout error.
+            if extra.is_empty() {
+                let (hl, hn, _) = heitz.ltc_at(mu, r).unwrap();
+                let theirs = (lit_ltc(&hl, hn, &light).unwrap() - truth) / truth;
+                eprintln!("{at}: default light, relative error {rel:.4} (Heitz's published 64² table: {theirs:.4})");
+                if mu < 0.5 {
+                    // a rough lobe at a grazing view, the light across the horizon: here
+                    // brdfbake's fit is off by -45% (on this grid and on the 64² one) where
+                    // Heitz's published table is off by +2%: a weakness of the fit that the
+                    // probe shows (the lookup and the exact value are checked above), not
+                    // bounded here; see issue 25's notes
+                    continue;
+                }
+                assert!(rel.abs() <= 0.05, "{at}: relative error {rel}");
+                let (t1, _) = table.lookup(mu, r).unwrap();
+                let swapped = Ltc::from_heitz_texel([t1[0], t1[2], t1[1], t1[3]]);
+                let bad = swapped.map_or(f64::INFINITY, |s| {
+                    (lit_ltc(&s, norm, &light).unwrap() - truth).abs() / truth
+                });
+                assert!(bad > 0.05, "{at}: control {bad}");
+            }
+        }
+    }
+    // text output: the lit value beside the channels, no NaN
+    let o = run(
+        dir.path(),
+        &[
+            "probe",
+            exr.to_str().unwrap(),
+            "--at",
+            "cos_theta_v=0.5,roughness=0.3",
+        ],
+    );
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    assert!(
+        text.contains("lit value of the polygon")
+            && text.contains("relative error")
+            && !text.contains("NaN"),
+        "{text}"
+    );
+    // bad polygons and flags: exit 2 naming the flag and what is accepted
+    let bad = |args: &[&str], expect: &[&str], what: &str| {
+        let mut a = vec![
+            "probe",
+            exr.to_str().unwrap(),
+            "--at",
+            "cos_theta_v=0.5,roughness=0.3",
+        ];
+        a.extend_from_slice(args);
+        assert_fails(&run(dir.path(), &a), 2, expect, what);
+    };
+    let accepted = "3 to 8 vertices";
+    bad(
+        &["--polygon", "0,0,1 1,0,1"],
+        &["--polygon", "2 vertices", accepted],
+        "two vertices",
+    );
+    bad(
+        &["--polygon", "0,0,1 1,0 0,1,1"],
+        &["--polygon", "vertex 2", accepted],
+        "a vertex of two numbers",
+    );
+    bad(
+        &["--polygon", "0,0,1 1,0,inf 0,1,1"],
+        &["--polygon", "not finite", accepted],
+        "an infinite coordinate",
+    );
+    bad(
+        &["--polygon", "0,0,1 1,0,1 2,0,1"],
+        &["--polygon", "in line", accepted],
+        "three vertices in line",
+    );
+    bad(
+        &["--polygon", "0,0,1 0,0,2 1,0,1"],
+        &["--polygon", "same or opposite directions", accepted],
+        "a repeated direction",
+    );
+    bad(
+        &["--polygon", "0,0,0 1,0,1 0,1,1"],
+        &["--polygon", "shading point", accepted],
+        "a vertex at the origin",
+    );
+    bad(
+        &["--polygon", "-1,-1,1 1,1,1 1,-1,1 -1,1,1"],
+        &["--polygon", "not convex", accepted],
+        "a bow tie",
+    );
+    bad(
+        &["--polygon", "0,0,-1 1,0,-1 0,1,-1"],
+        &["--polygon", "horizon"],
+        "below the horizon",
+    );
+    bad(&["--f0", "1.5"], &["--f0", "[0, 1]"], "F0 above 1");
+    // the clockwise square is the same two-sided light, with a note
+    let mut cw: Vec<&str> = square.split(' ').collect();
+    cw.reverse();
+    let cw = cw.join(" ");
+    let a = probe("cos_theta_v=0.5,roughness=0.3", &["--polygon", square]);
+    let b = probe("cos_theta_v=0.5,roughness=0.3", &["--polygon", &cw]);
+    assert_eq!(a["table"], b["table"]);
+    assert_eq!(a["exact"], b["exact"]);
+}
+
+/// `report` of an ltc preset: a section with the per-texel fit error of the table with
+/// matrix channels — a log-scale heatmap per error, and the median, 99th percentile and
+/// maximum the sidecar's `ltc.fit_error` states (the same deterministic fit, so the same
+/// numbers, printed to 4 digits) — and none for the table without (ltc_2: nothing fitted).
+#[test]
+fn report_plots_the_fit_error() {
+    let (dir, out) = bake(&heitz_preset(8));
+    let o = run(dir.path(), &["report", "p.json", "--out", "r", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let page = std::fs::read_to_string(dir.path().join("r/index.html")).unwrap();
+    assert_eq!(
+        page.matches("<h3>Fit error of the LTC").count(),
+        1,
+        "one table is fitted"
+    );
+    assert!(page.contains("Fit error of the LTC — ltc_1"));
+    let side: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("ltc_1.json")).unwrap()).unwrap();
+    for c in ["objective", "l3", "lit_rms", "lit_max"] {
+        assert!(
+            page.contains(&format!("ltc_1 — log10 {c} (fit error)")),
+            "{c}"
+        );
+        let s = &side["ltc"]["fit_error"][c];
+        let f = |k: &str| format!("{:.3e}", s[k].as_f64().unwrap());
+        let row = format!(
+            "<tr><td>{c}</td><td>{}</td><td>{}</td><td>{}</td>",
+            f("median"),
+            f("p99"),
+            f("max")
+        );
+        assert!(page.contains(&row), "{c}: no row {row}");
+    }
 }

@@ -7,6 +7,9 @@ use std::path::PathBuf;
 
 /// Tolerance of the exact reference computation.
 pub const EXACT_TOLERANCE: f64 = 1e-10;
+/// Relative tolerance of the exact lit value of an ltc table's polygon light (a 2D
+/// adaptive quadrature: 1e-9 keeps it to ~1 s on a narrow lobe, far below any fit's error).
+pub const LIT_TOLERANCE: f64 = 1e-9;
 
 #[derive(clap::Args, Debug)]
 pub struct ProbeArgs {
@@ -21,11 +24,67 @@ pub struct ProbeArgs {
     /// with 8 bits of sub-texel precision filter: the value such a GPU reads).
     #[arg(long, value_enum, default_value_t = FilterArg::Ideal)]
     pub filter: FilterArg,
+    /// For an ltc table: the polygon light whose lit value is shown from the table and
+    /// exactly, as 3 to 8 vertices `x,y,z` separated by spaces: positions relative to the
+    /// shading point in the frame with the normal +z and the view in the xz-plane at +x
+    /// (the mirror direction is at -x), convex as seen from the point, either winding.
+    /// Default: a square of side 1 at distance 2 facing the point, centred on the mirror
+    /// direction (lifted to 10° above the horizon at grazing views).
+    #[arg(long, value_name = "X,Y,Z X,Y,Z X,Y,Z ...", allow_hyphen_values = true)]
+    pub polygon: Option<String>,
+    /// For an ltc table: Schlick's F0 of the lit value (F90 = 1: the table's
+    /// F0 * norm + (1 - F0) * fresnel against the BRDF with that Fresnel); without it F = 1.
+    #[arg(long, value_name = "F0")]
+    pub f0: Option<f64>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
     pub guards: super::guards::Guards,
+}
+
+/// What `--polygon` accepts, for its errors.
+const POLYGON_ACCEPTED: &str = "3 to 8 vertices x,y,z separated by spaces, positions relative to the shading point (normal +z, view in the xz-plane at +x), convex as seen from it, e.g. --polygon \"-0.5,-0.5,1 0.5,-0.5,1 0.5,0.5,1 -0.5,0.5,1\"";
+
+/// Parses and checks `--polygon` ([`crate::kernels::ltc_check::polygon_light`]).
+pub(super) fn parse_polygon(
+    s: &str,
+) -> Result<(crate::kernels::ltc_check::PolygonLight, bool), CliError> {
+    let mut verts = Vec::new();
+    for (k, part) in s
+        .split(|c: char| c.is_whitespace() || c == ';')
+        .filter(|p| !p.is_empty())
+        .enumerate()
+    {
+        let nums: Vec<Option<f64>> = part.split(',').map(|t| t.trim().parse().ok()).collect();
+        match nums[..] {
+            [Some(x), Some(y), Some(z)] => verts.push([x, y, z]),
+            _ => {
+                return Err(CliError::input(format!(
+                    "--polygon: vertex {} {part:?} is not x,y,z (three numbers separated by commas); accepted: {POLYGON_ACCEPTED}",
+                    k + 1
+                )))
+            }
+        }
+    }
+    crate::kernels::ltc_check::polygon_light(&verts)
+        .map_err(|e| CliError::input(format!("--polygon: {e}; accepted: {POLYGON_ACCEPTED}")))
+}
+
+/// A polygon's vertices as `--polygon` spells them.
+fn polygon_text(verts: &[[f64; 3]]) -> String {
+    verts
+        .iter()
+        .map(|p| format!("{},{},{}", short(p[0]), short(p[1]), short(p[2])))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A coordinate with 9 significant digits, trailing zeros dropped.
+fn short(x: f64) -> String {
+    let v: f64 = format!("{x:.8e}").parse().unwrap_or(x);
+    let v = if v == 0.0 { 0.0 } else { v };
+    format!("{v}")
 }
 
 /// `--filter`.
@@ -108,6 +167,24 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         );
     }
     let x = parse_at(&a.at, &names)?;
+    let is_ltc = table.spec.kind == crate::table::TableKind::Ltc;
+    for (flag, given) in [("--polygon", a.polygon.is_some()), ("--f0", a.f0.is_some())] {
+        if given && !is_ltc {
+            return Err(CliError::input(format!(
+                "{flag} applies to ltc tables (the lit value of a polygon light); {} is a {} table",
+                a.file.display(),
+                table.spec.kind.name()
+            )));
+        }
+    }
+    if let Some(f0) = a.f0 {
+        if !(0.0..=1.0).contains(&f0) {
+            return Err(CliError::input(format!(
+                "--f0 must be a number in [0, 1] (Schlick's reflectance at normal incidence), got {f0}"
+            )));
+        }
+    }
+    let user_light = a.polygon.as_deref().map(parse_polygon).transpose()?;
     let unscale = |v: Vec<f64>| -> Vec<f64> { v.iter().map(|v| v / rb.scale).collect() };
     let ideal = unscale(lut.lookup(&x));
     let hw_axes = table.hardware_filtered_axes();
@@ -156,6 +233,60 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         table.stored_values(&computed),
         table.stored_errors(&computed_err),
     );
+    if deadline.passed() {
+        return Err(super::guards::stopped("this probe", &deadline));
+    }
+    // an ltc table with its matrix: the lit value of a polygon light, from the looked-up
+    // texels and exactly
+    let kind_x = table.to_kind_order(&exact_x);
+    let chans = crate::table::ltc::ltc_channels(&table.spec);
+    let looked_up = table.computed_from_stored(&gpu, chans.len());
+    let has_matrix = is_ltc
+        && chans
+            .iter()
+            .zip(&looked_up)
+            .filter(|(c, v)| c.is_matrix() && v.is_some())
+            .count()
+            == 4;
+    let lit = if has_matrix {
+        let (light, reversed) = match user_light {
+            Some(l) => l,
+            None => {
+                let (mu, _) = crate::table::ltc::view_and_alpha(&table.spec, &kind_x)
+                    .map_err(|e| CliError::input(format!("--at {}: {e}", a.at)))?;
+                parse_polygon(&polygon_text(
+                    &crate::kernels::ltc_check::default_test_quad(mu),
+                ))?
+            }
+        };
+        if reversed {
+            notes.push("--polygon is wound clockwise as seen from the shading point: the light is taken as two-sided (its vertices reversed)".into());
+        }
+        let r = crate::table::ltc::lit_probe(
+            &table.spec,
+            &kind_x,
+            &looked_up,
+            &light,
+            a.f0,
+            LIT_TOLERANCE,
+        )
+        .map_err(|e| CliError::input(format!("--at {}: the lit value: {e}", a.at)))?;
+        if r.norm_computed {
+            notes.push("the table holds no norm channel (Heitz's layout keeps it in ltc_2): the lit value uses brdfbake's albedo at the point, which that channel holds".into());
+        }
+        if r.fresnel_computed {
+            notes.push("the table holds no fresnel channel: the lit value uses brdfbake's integral at the point, which that channel holds".into());
+        }
+        Some((light, r))
+    } else {
+        if user_light.is_some() {
+            return Err(CliError::input(format!(
+                "--polygon: {} holds no matrix channels (m00, m20, m02, m22): probe the texture that does (Heitz's layout: ltc_1) for a lit value",
+                a.file.display()
+            )));
+        }
+        None
+    };
     if deadline.passed() {
         return Err(super::guards::stopped("this probe", &deadline));
     }
@@ -220,6 +351,26 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         if exact_x != x {
             doc["exact_at"] = json!(point(&exact_x));
         }
+        if let Some((light, r)) = &lit {
+            doc["lit"] = json!({
+                "polygon": light.verts,
+                "polygon_default": a.polygon.is_none(),
+                "crosses_horizon": light.crosses_horizon,
+                "cos_theta_v": r.mu,
+                "alpha": r.alpha,
+                "f0": r.f0,
+                "inverse_matrix": r.ltc.inverse_matrix(),
+                "form_factor": r.form_factor,
+                "norm": r.norm,
+                "norm_from": if r.norm_computed { "computed" } else { "table" },
+                "fresnel": r.fresnel,
+                "table": r.table,
+                "exact": r.exact,
+                "exact_error_estimate": r.exact_error,
+                "relative_error": r.relative_error,
+                "meaning": "table: (F0 * norm + (1 - F0) * fresnel, or norm without f0) * the LTC's integral over the polygon (M^-1 rebuilt from the looked-up matrix channels, clipped to the horizon as a shader does); exact: the BRDF (with Schlick's Fresnel for f0) times cos integrated over the polygon clipped to the horizon, by adaptive quadrature; relative_error = (table - exact) / exact; inverse_matrix: the rebuilt M^-1 (rows [[a, 0, b], [0, c, 0], [d, 0, 1]]: the looked-up channels times c = 1/m22); polygon: the light's vertices, counterclockwise about the direction away from the shading point (a clockwise --polygon is reversed: the light is two-sided)",
+            });
+        }
         if a.filter == FilterArg::Hardware {
             doc["hardware_filtered_axes"] = json!(filtered);
         }
@@ -262,8 +413,42 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     }
     if exact.iter().any(|v| v.is_nan()) {
         outln!(
-            "note: \"-\": no exact value at this point: an LTC matrix entry is the fit at each texel, not a function to evaluate between them (verify refits texels; the lit error of the fit is in the sidecar's ltc section)"
+            "note: \"-\": no exact value at this point: an LTC matrix entry is the fit at each texel, not a function to evaluate between them; what it is for is the lit value below (verify refits texels; the fit's error is in the sidecar's ltc section)"
         );
+    }
+    if let Some((light, r)) = &lit {
+        outln!(
+            "lit value of the polygon {}{} at cos_theta_v={}, alpha={} ({}):",
+            polygon_text(&light.verts),
+            if a.polygon.is_none() {
+                " (the default: a square of side 1 at distance 2, centred on the mirror direction)"
+            } else {
+                ""
+            },
+            short(r.mu),
+            short(r.alpha),
+            match r.f0 {
+                Some(f0) => format!("Schlick's Fresnel, F0 = {f0}, F90 = 1"),
+                None => "F = 1".into(),
+            }
+        );
+        outln!(
+            "  table          {:>20.12}  = {} {:.9} x LTC integral {:.9}",
+            r.table,
+            if r.f0.is_some() {
+                "F0 norm + (1 - F0) fresnel"
+            } else {
+                "norm"
+            },
+            r.magnitude,
+            r.form_factor
+        );
+        outln!(
+            "  exact          {:>20.12}  (quadrature of BRDF x cos over the polygon, error estimate {:.1e})",
+            r.exact,
+            r.exact_error
+        );
+        outln!("  relative error {:>20.3e}", r.relative_error);
     }
     if a.filter == FilterArg::Hardware {
         let v: Vec<String> = lut

@@ -127,12 +127,14 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
                 deadline: Some(&deadline),
                 accept_error_estimate: t.accept_error_estimate,
             };
-            let lut = crate::table::bake_with(&t.spec, &opts)
+            // (an ltc table's fit error beside its texels, as the sidecar records it)
+            let (lut, fit) = crate::table::bake_with_fit(&t.spec, &opts)
                 .map_err(|e| super::bake_error(&p.name, e))?;
             tables.push(ReportTable {
                 preset: p.name.clone(),
                 spec: t.spec.clone(),
                 lut,
+                fit,
             });
         }
     }

@@ -31,6 +31,49 @@ pub struct VerifyArgs {
     pub guards: super::guards::Guards,
 }
 
+/// How far the sidecar's fit error (3 significant digits, `{:.2e}` of an f32) may be from a
+/// refit's: half a unit in the third digit of a mantissa in [1, 10) is at most 5·10⁻³ of the
+/// value, and the f32 rounding adds 6·10⁻⁸.
+pub const FIT_ERROR_DIGITS: f64 = 5.001e-3;
+
+/// The distinct roughness lines (kind's axis 1) of `texels` (stored order).
+fn refit_js(table: &crate::preset::PresetTable, texels: &[[usize; 3]]) -> Vec<usize> {
+    let js: BTreeSet<usize> = texels
+        .iter()
+        .map(|&i| table.texel_to_kind_order(i)[1])
+        .collect();
+    js.into_iter().collect()
+}
+
+fn refit_line_count(table: &crate::preset::PresetTable, texels: &[[usize; 3]]) -> usize {
+    refit_js(table, texels).len()
+}
+
+/// The refit texel of every texel of `texels` (stored order) of an `ltc` table: their
+/// roughness lines refitted ([`crate::table::ltc::refit_lines`]). `None` when `deadline`
+/// passed first.
+fn refit_texels(
+    table: &crate::preset::PresetTable,
+    texels: &[[usize; 3]],
+    deadline: Option<&crate::deadline::Deadline>,
+) -> Result<Option<Vec<crate::kernels::ltc_fit::LtcTexel>>, String> {
+    let js = refit_js(table, texels);
+    let stop = || deadline.is_some_and(|d| d.passed());
+    let Some(lines) = crate::table::ltc::refit_lines(&table.spec, &js, &stop)? else {
+        return Ok(None);
+    };
+    Ok(Some(
+        texels
+            .iter()
+            .map(|&i| {
+                let k = table.texel_to_kind_order(i);
+                let l = js.binary_search(&k[1]).expect("a refit line");
+                lines[l][k[0]]
+            })
+            .collect(),
+    ))
+}
+
 /// How much more a reference value at [`REFERENCE_TOLERANCE`] costs than a texel at the
 /// default tolerance 1e-7, for the time estimate: the rules' error falls like h^7 to h^15,
 /// so 1000 times tighter takes ~3 to ~10 times the nodes; 10 is the guide's upper end.
@@ -234,12 +277,14 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     let threads = rayon::current_num_threads();
     // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
     // a table baked here)
+    // (and the sidecar's ltc.fit_error section, for an ltc table read from files)
     let mut jobs: Vec<(
         String,
         crate::preset::PresetTable,
         Lut,
         f64,
         serde_json::Value,
+        Option<serde_json::Value>,
     )> = Vec::new();
     let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
@@ -308,7 +353,11 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             .as_ref()
             .and_then(|s| s.get("lookup_error").cloned())
             .unwrap_or_else(|| crate::meta::lookup_error(&table, &lut));
-        jobs.push((a.target.clone(), table, lut, rb.scale, stated));
+        let fit_error = rb
+            .sidecar
+            .as_ref()
+            .and_then(|s| s.pointer("/ltc/fit_error").cloned());
+        jobs.push((a.target.clone(), table, lut, rb.scale, stated, fit_error));
     } else {
         // a .json without a sidecar's schema is read as a preset; say so when that fails,
         // so that a damaged sidecar is not reported only in a preset's terms
@@ -362,7 +411,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     let stored =
                         crate::encode::unorm::quantized(&t.spec.name, &scaled, t.spec.storage)
                             .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
-                    jobs.push((label, t.clone(), stored, t.scale, stated));
+                    jobs.push((label, t.clone(), stored, t.scale, stated, None));
                     continue;
                 }
                 // (baked here, the texels are the values: no scale applied)
@@ -371,13 +420,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     ..t.clone()
                 };
                 let stated = crate::meta::lookup_error(&values, &lut);
-                jobs.push((label, t.clone(), lut, 1.0, stated));
+                jobs.push((label, t.clone(), lut, 1.0, stated, None));
             }
         }
     }
     let mut failed = Vec::new();
     let mut docs = Vec::new();
-    for (label, table, lut, scale, sidecar) in &jobs {
+    for (label, table, lut, scale, sidecar, fit_error) in &jobs {
         let spec = &table.spec;
         let texels = if a.all {
             all_texels(lut)
@@ -410,15 +459,49 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         }
         let mut chans = Vec::new();
         // an ltc table's matrix entries have no exact value to recompute (exact_at gives NaN):
-        // the fit is defined at its texels, and its error is the sidecar's `ltc` section
+        // the fit is defined at its texels, by a fixed path along each roughness line, so a
+        // refit of the checked texels' lines gives them bit for bit
         let no_exact = |exact: f64| spec.kind.is_ltc() && exact.is_nan();
+        let refit = if errs.iter().any(|e| no_exact(e.3)) {
+            refit_texels(table, &texels, deadline.as_ref())
+                .map_err(CliError::input)?
+                .ok_or_else(stopped)?
+        } else {
+            Vec::new()
+        };
+        if !refit.is_empty() && !a.json {
+            outln!(
+                "  (the matrix channels against a refit of the checked texels' {} roughness lines: the fit's fixed path gives the same bits)",
+                refit_line_count(table, &texels)
+            );
+        }
         for (c, (e, idx, stored, exact)) in errs.iter().enumerate() {
             let name = &lut.channels[c].name;
             if no_exact(*exact) {
-                if !a.json {
-                    outln!("  {name:<12} not recomputed: an LTC fit's matrix entry has no exact value (the fit's error is in the sidecar's ltc section)");
+                // the refit's value of stored channel c at every checked texel
+                let mut worst = (0.0f64, [0usize; 3], f64::NAN, f64::NAN);
+                for (idx, t) in texels.iter().zip(&refit) {
+                    let want =
+                        table.stored_values(&crate::table::ltc::refit_matrix_values(spec, t))[c];
+                    let got = lut.texel(*idx, c) as f64 / scale;
+                    let d = (got - want).abs() / want.abs().max(1.0);
+                    if d > worst.0 || d.is_nan() || worst.2.is_nan() {
+                        worst = (d, *idx, got, want);
+                    }
                 }
-                chans.push(json!({"channel": name, "checked": false, "reason": "an LTC fit's matrix entry has no exact value"}));
+                let (e, idx, stored, want) = worst;
+                let ok = e <= threshold;
+                if !ok {
+                    failed.push(format!("{label} {name}"));
+                }
+                if !a.json {
+                    outln!(
+                        "  {name:<12} max error {e:.3e} at texel {:?} (stored {stored:.12}, refit {want:.12}) {}",
+                        &idx[..lut.axes.len()],
+                        if ok { "ok" } else { "OVER TOLERANCE" }
+                    );
+                }
+                chans.push(json!({"channel": name, "recomputed_by": "refit", "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "refit": want, "ok": ok, "threshold": threshold}));
                 continue;
             }
             // (relative above 1, like the error)
@@ -469,6 +552,67 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_ideal_filtering": worst, "within_sidecar_worst_case": within, "sidecar_interpolation_estimate": estimate}));
         }
         let mut doc = json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}});
+        // the sidecar's per-texel fit error against the refit's
+        if !refit.is_empty() {
+            match fit_error {
+                Some(fe) => {
+                    let mut fit_docs = Vec::new();
+                    for (k, ch) in crate::table::ltc::fit_channels().iter().enumerate() {
+                        let name = ch.name.as_str();
+                        let side = fe
+                            .get(name)
+                            .and_then(|v| v.get("rows"))
+                            .and_then(|r| r.as_array())
+                            .and_then(|r| crate::meta::parse_texel_rows(r))
+                            .filter(|v| v.len() == lut.data.len() / lut.channels.len().max(1));
+                        let Some(side) = side else {
+                            failed.push(format!("{label} ltc.fit_error.{name}"));
+                            if !a.json {
+                                outln!("  fit error {name:<9} MISSING or malformed in the sidecar (ltc.fit_error.{name}.rows)");
+                            }
+                            fit_docs.push(json!({"channel": name, "ok": false, "reason": "missing or malformed rows"}));
+                            continue;
+                        };
+                        let mut worst = (0.0f64, [0usize; 3], f64::NAN, f64::NAN);
+                        for (idx, t) in texels.iter().zip(&refit) {
+                            let want = crate::table::ltc::refit_fit_values(t)[k];
+                            let got = side[idx[0] + idx[1] * lut.dim(0)] as f64;
+                            let d = if want == 0.0 {
+                                if got == 0.0 {
+                                    0.0
+                                } else {
+                                    f64::INFINITY
+                                }
+                            } else {
+                                (got - want).abs() / want.abs()
+                            };
+                            if d > worst.0 || d.is_nan() || worst.2.is_nan() {
+                                worst = (d, *idx, got, want);
+                            }
+                        }
+                        let (d, idx, got, want) = worst;
+                        let ok = d <= FIT_ERROR_DIGITS;
+                        if !ok {
+                            failed.push(format!("{label} ltc.fit_error.{name}"));
+                        }
+                        if !a.json {
+                            outln!(
+                                "  fit error {name:<9} max relative difference {d:.1e} at texel {:?} (sidecar {got:.3e}, refit {want:.6e}) {}",
+                                &idx[..lut.axes.len()],
+                                if ok { "ok" } else { "DIFFERS" }
+                            );
+                        }
+                        fit_docs.push(json!({"channel": name, "max_relative_difference": d, "texel": &idx[..lut.axes.len()], "sidecar": got, "refit": want, "ok": ok, "threshold": FIT_ERROR_DIGITS}));
+                    }
+                    doc["fit_error"] = json!(fit_docs);
+                }
+                None => {
+                    if !a.json {
+                        outln!("  fit error: not checked (no sidecar ltc.fit_error: verify a baked file for that)");
+                    }
+                }
+            }
+        }
         if rounding > 0.0 {
             doc["storage"] = json!(spec.storage.name());
             doc["storage_rounding_bound"] = json!(rounding);

@@ -226,6 +226,147 @@ pub fn lit_reference_about(
     polygon_integral(&g, &clipped, c, scale, rel_tol)
 }
 
+/// [`lit_reference`] with Schlick's Fresnel `F0 + (1 − F0)(1 − v·h)⁵` (F90 = 1) weighting the
+/// BRDF (`f0 = None`: F = 1, [`lit_reference`] itself): the exact value that a table's
+/// `F0·norm + (1 − F0)·fresnel` times `∫_P D` approximates.
+pub fn lit_reference_schlick(
+    brdf: &Brdf,
+    alpha: f64,
+    mu: f64,
+    light: &PolygonLight,
+    f0: Option<f64>,
+    rel_tol: f64,
+) -> Result<Reference, LtcError> {
+    let Some(f0) = f0 else {
+        return lit_reference(brdf, alpha, mu, light, rel_tol);
+    };
+    let v = view_vector(mu);
+    let clipped = clip_to_halfspace(&light.verts, [0.0, 0.0, 1.0]);
+    let m = mirror(mu);
+    let c = unit([m[0], m[1], m[2].max(1e-3)]);
+    let g = |l: [f64; 3]| {
+        if l[2] <= 0.0 {
+            return 0.0;
+        }
+        let hs = [v[0] + l[0], v[1] + l[1], v[2] + l[2]];
+        let len = dot(hs, hs).sqrt();
+        let vh = if len > 0.0 { dot(v, hs) / len } else { 0.0 };
+        let f = f0 + (1.0 - f0) * crate::model::fresnel::schlick_weight(vh);
+        brdf.eval(v, l) * l[2] * f
+    };
+    polygon_integral(&g, &clipped, c, 2.0 * alpha + 1e-4, rel_tol)
+}
+
+/// The most vertices [`polygon_light`] accepts (a light's polygon; clipping to the horizon
+/// adds at most one).
+pub const MAX_POLYGON_VERTICES: usize = 8;
+
+/// A user's polygonal light (vertex positions relative to the shading point, in the frame
+/// with the normal +z and the view in the xz-plane at positive x), checked: 3 to
+/// [`MAX_POLYGON_VERTICES`] finite vertices, none at the shading point, convex as seen from
+/// it with no two vertices in the same direction and no three on one great circle (else the
+/// polygon is degenerate, or not the convex light the reference quadrature integrates), and
+/// something of it above the horizon. Either winding is accepted (the light is taken as
+/// two-sided): a clockwise polygon is returned reversed, counterclockwise about the
+/// direction away from the shading point, the winding whose integrals are positive.
+/// Returns the light and whether it was reversed; the error says what is wrong.
+pub fn polygon_light(verts: &[[f64; 3]]) -> Result<(PolygonLight, bool), String> {
+    let n = verts.len();
+    if !(3..=MAX_POLYGON_VERTICES).contains(&n) {
+        return Err(format!(
+            "{n} vertices: a polygon light has 3 to {MAX_POLYGON_VERTICES}"
+        ));
+    }
+    let mut u = Vec::with_capacity(n);
+    for (i, p) in verts.iter().enumerate() {
+        if !p.iter().all(|x| x.is_finite()) {
+            return Err(format!("vertex {} is not finite", i + 1));
+        }
+        let l = dot(*p, *p).sqrt();
+        if !(l > 0.0 && l.is_finite()) {
+            return Err(format!(
+                "vertex {} is at the shading point (0, 0, 0) or out of range: vertices are positions relative to it",
+                i + 1
+            ));
+        }
+        u.push([p[0] / l, p[1] / l, p[2] / l]);
+    }
+    // every other vertex strictly on one side of every edge's great circle
+    let mut sign = 0.0;
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let e = cross(u[i], u[j]);
+        let s = dot(e, e).sqrt();
+        if s < 1e-9 {
+            return Err(format!(
+                "vertices {} and {} are in the same or opposite directions from the shading point: the polygon is degenerate",
+                i + 1,
+                j + 1
+            ));
+        }
+        for (k, &w) in u.iter().enumerate() {
+            if k == i || k == j {
+                continue;
+            }
+            let t = dot(e, w) / s;
+            if t.abs() < 1e-9 || (sign != 0.0 && t.signum() != sign) {
+                return Err(format!(
+                    "the polygon is not convex as seen from the shading point (vertex {} is {} the great circle through vertices {} and {}): give a convex polygon with no three vertices in line",
+                    k + 1,
+                    if t.abs() < 1e-9 { "on" } else { "on the wrong side of" },
+                    i + 1,
+                    j + 1
+                ));
+            }
+            sign = t.signum();
+        }
+    }
+    let mut v = verts.to_vec();
+    let reversed = sign < 0.0;
+    if reversed {
+        v.reverse();
+    }
+    let e = super::ltc_polygon::clamped_cosine_integral(&v).map_err(|e| e.to_string())?;
+    if e.is_nan() || e <= 0.0 {
+        return Err(
+            "the polygon lies at or below the horizon (z <= 0 in the shading frame): it lights nothing".into(),
+        );
+    }
+    let crosses_horizon = v.iter().any(|p| p[2] <= 0.0);
+    Ok((
+        PolygonLight {
+            verts: v,
+            crosses_horizon,
+        },
+        reversed,
+    ))
+}
+
+/// The default test light of `probe`: a square of side 1 at distance 2 facing the shading
+/// point, centred on the mirror direction of the view `mu` (lifted to 10° above the horizon
+/// at grazing views, so that most of it lights), edges along y and the direction
+/// perpendicular to both: the light a specular lobe sees best (half-angle atan(1/4) ≈ 14°).
+pub fn default_test_quad(mu: f64) -> Vec<[f64; 3]> {
+    let m = mirror(mu.clamp(0.0, 1.0));
+    let lift = 10f64.to_radians().sin();
+    let c = if m[2] < lift {
+        [-(1.0 - lift * lift).sqrt(), 0.0, lift]
+    } else {
+        m
+    };
+    // e1 ⟂ c in the xz-plane (towards +z), e2 = y: (e1, e2, c) right-handed
+    let e1 = [c[2], 0.0, -c[0]];
+    let e2 = [0.0, 1.0, 0.0];
+    let at = |s: f64, t: f64| {
+        [
+            2.0 * c[0] + 0.5 * (s * e1[0] + t * e2[0]),
+            2.0 * c[1] + 0.5 * (s * e1[1] + t * e2[1]),
+            2.0 * c[2] + 0.5 * (s * e1[2] + t * e2[2]),
+        ]
+    };
+    vec![at(-1.0, -1.0), at(1.0, -1.0), at(1.0, 1.0), at(-1.0, 1.0)]
+}
+
 /// The lit value of a light through an LTC: `norm·∫_P D` ([`ltc_polygon_integral`], the
 /// whole polygon, as a shader does).
 pub fn lit_ltc(ltc: &Ltc, norm: f64, light: &PolygonLight) -> Result<f64, LtcError> {
@@ -277,6 +418,41 @@ pub fn error_stats(cases: &[(f64, f64)]) -> ErrorStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn polygon_lights_are_checked() {
+        let sq = [
+            [-0.5, -0.5, 1.0],
+            [0.5, -0.5, 1.0],
+            [0.5, 0.5, 1.0],
+            [-0.5, 0.5, 1.0],
+        ];
+        let (l, rev) = polygon_light(&sq).unwrap();
+        assert!(!rev && !l.crosses_horizon);
+        let mut cw = sq;
+        cw.reverse();
+        let (l2, rev) = polygon_light(&cw).unwrap();
+        assert!(rev);
+        assert_eq!(l2.verts, cw.iter().rev().copied().collect::<Vec<_>>());
+        // too few, non-finite, at the origin, repeated, three in line, non-convex, below
+        assert!(polygon_light(&sq[..2]).is_err());
+        assert!(polygon_light(&[[f64::NAN, 0.0, 1.0], sq[1], sq[2]]).is_err());
+        assert!(polygon_light(&[[0.0; 3], sq[1], sq[2]]).is_err());
+        assert!(polygon_light(&[sq[0], sq[0], sq[1], sq[2]]).is_err());
+        assert!(polygon_light(&[sq[0], [0.0, -0.5, 1.0], sq[1], sq[2]]).is_err());
+        assert!(polygon_light(&[sq[0], sq[2], sq[1], sq[3]]).is_err());
+        let below = sq.map(|p| [p[0], p[1], -p[2]]);
+        assert!(polygon_light(&below).is_err());
+        // the default quad: valid, counterclockwise, holding the mirror direction
+        for mu in [0.0, 0.05, 0.5, 1.0] {
+            let q = default_test_quad(mu);
+            let (l, rev) = polygon_light(&q).unwrap();
+            assert!(!rev, "{mu}");
+            if mu >= 0.2 {
+                assert!(contains(&l.verts, mirror(mu)), "{mu}");
+            }
+        }
+    }
 
     #[test]
     fn the_test_set_is_fixed_and_valid() {

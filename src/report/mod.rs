@@ -7,6 +7,7 @@ pub mod classic;
 pub mod convergence;
 pub mod engines;
 pub mod filament;
+pub mod ltc;
 mod svg;
 
 use crate::lut::{Lut, Quantity};
@@ -21,6 +22,9 @@ pub struct ReportTable {
     pub spec: TableSpec,
     /// The table's values (unscaled).
     pub lut: Lut,
+    /// An `ltc` table's per-texel fit error ([`crate::table::ltc::fit_channels`], the
+    /// sidecar's `ltc.fit_error`), texels as `lut`'s; `None` for other tables.
+    pub fit: Option<Lut>,
 }
 
 /// Karis' analytic fit of the split-sum A, B for GGX ("Physically Based Shading on Mobile",
@@ -95,6 +99,9 @@ fn table_section(t: &ReportTable, out: &mut String) {
         out.push_str(&heatmap(lut, c, &format!("{} — {}", spec.name, ch.name)));
     }
     let _ = writeln!(out, "</div>");
+    if let Some(fit) = &t.fit {
+        ltc::section(&spec.name, fit, out);
+    }
     let is_e = matches!(
         spec.kind,
         TableKind::Albedo | TableKind::Dfg | TableKind::KullaConty | TableKind::ClassicAlbedo

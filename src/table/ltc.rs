@@ -36,9 +36,11 @@
 
 use super::spec::{LtcChannel, TableKind, TableSpec};
 use super::texel::Misses;
+use crate::kernels::ltc_check::{lit_reference_schlick, PolygonLight};
 use crate::kernels::ltc_fit::{fit_line, norm_and_fresnel, FitReport, LtcFitOptions, LtcTexel};
-use crate::kernels::ltc_polygon::clipped_sphere_table;
+use crate::kernels::ltc_polygon::{clipped_sphere_table, ltc_polygon_integral};
 use crate::lut::{Axis, Channel};
+use crate::model::ltc::Ltc;
 use crate::model::Fresnel;
 use rayon::prelude::*;
 
@@ -282,6 +284,53 @@ fn line(
         .collect())
 }
 
+/// Refits the roughness lines `js` (indices along the roughness axis) of the `ltc` table
+/// `spec` (validated) as the bake fits them — the same fixed path, so the same bits — for
+/// `verify`: per line, its texels in view order. `None` when `stop()` turned true first
+/// (checked before every line); an error names the line.
+pub fn refit_lines(
+    spec: &TableSpec,
+    js: &[usize],
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<Option<Vec<Vec<LtcTexel>>>, String> {
+    let opts = fit_options(spec);
+    let out: Vec<Option<LineResult>> = js
+        .par_iter()
+        .with_min_len(1)
+        .map(|&j| (!stop()).then(|| line(spec, j, true, &opts)))
+        .collect();
+    let mut lines = Vec::with_capacity(js.len());
+    for (j, l) in js.iter().zip(out) {
+        match l {
+            None => return Ok(None),
+            Some(Ok(t)) => lines.push(t),
+            Some(Err((_, msg))) => return Err(format!("refitting roughness texel {j}: {msg}")),
+        }
+    }
+    Ok(Some(lines))
+}
+
+/// The values of the kind's channels ([`ltc_channels`] order) that a refit texel gives: the
+/// matrix entries; NaN for the others (they are integrals, recomputed by [`exact_at`]).
+pub fn refit_matrix_values(spec: &TableSpec, t: &LtcTexel) -> Vec<f64> {
+    let h = t.ltc.heitz_texel();
+    ltc_channels(spec)
+        .iter()
+        .map(|c| match c {
+            LtcChannel::M00 => h[0],
+            LtcChannel::M20 => h[1],
+            LtcChannel::M02 => h[2],
+            LtcChannel::M22 => h[3],
+            _ => f64::NAN,
+        })
+        .collect()
+}
+
+/// The per-texel fit error of a refit texel, in [`fit_channels`]' order.
+pub fn refit_fit_values(t: &LtcTexel) -> [f64; 4] {
+    fit_values(&t.fit)
+}
+
 /// Bakes an `ltc` or `ltc-sphere` table (validated), checking `stop()` before every line
 /// (one roughness of an `ltc` table, one row of an `ltc-sphere` table). `limit`: the
 /// largest accepted error estimate.
@@ -409,14 +458,10 @@ fn bake_sphere(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync)) -> Baked {
     out
 }
 
-/// The exact value of every channel of an `ltc` or `ltc-sphere` table at the physical
-/// coordinates `x` (one per axis, in the kind's order), at tolerance `tol`, with error
-/// estimates: the norm and Fresnel channels by their integrals, the sphere table in closed
-/// form at the point's position in the texture, `zero` 0. A matrix entry has no exact value
-/// (the LTC is a fit, and a fit warm-started along a path is defined at the texels only):
-/// NaN, which `probe` and `verify` treat as such (they measure the lit value, and refit).
-pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<(Vec<f64>, Vec<f64>), String> {
-    if x.len() != spec.axes.len() {
+/// The view cosine and α an `ltc` table's texels hold at the physical coordinates `x` (in
+/// the kind's order; each axis' clamp applied), or why the table is not defined there.
+pub fn view_and_alpha(spec: &TableSpec, x: &[f64]) -> Result<(f64, f64), String> {
+    if x.len() != 2 || spec.axes.len() != 2 {
         return Err(format!(
             "{} coordinates for {} axes",
             x.len(),
@@ -424,11 +469,6 @@ pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<(Vec<f64>, Vec<
         ));
     }
     let p = [spec.axes[0].clamped(x[0]), spec.axes[1].clamped(x[1])];
-    if spec.kind == TableKind::LtcSphere {
-        let v = clipped_sphere_table(p[0].clamp(-1.0, 1.0), p[1].clamp(0.0, 1.0))
-            .map_err(|e| format!("no exact value there: {e}"))?;
-        return Ok((vec![v], vec![0.0]));
-    }
     let mu = p[0];
     let alpha = match spec.axes[1].quantity {
         crate::lut::Quantity::Roughness(q) => q.to_alpha(p[1]),
@@ -446,6 +486,138 @@ pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<(Vec<f64>, Vec<
             crate::numfmt::num(alpha)
         ));
     }
+    Ok((mu, alpha))
+}
+
+/// The lit value of one polygon light at a point of an `ltc` table, as a shader gets it
+/// from the table and as it is ([`lit_probe`]).
+#[derive(Clone, Debug)]
+pub struct LitProbe {
+    /// The point: view cosine and α (each axis' clamp applied).
+    pub mu: f64,
+    pub alpha: f64,
+    /// The LTC rebuilt from the looked-up matrix channels.
+    pub ltc: Ltc,
+    /// `∫_P D` of that LTC over the light ([`ltc_polygon_integral`], clipped as a shader clips).
+    pub form_factor: f64,
+    /// The norm used: the table's (looked up) or, `norm_computed`, brdfbake's albedo.
+    pub norm: f64,
+    pub norm_computed: bool,
+    /// The Fresnel channel used with `f0` (the table's, or computed: `fresnel_computed`).
+    pub fresnel: Option<f64>,
+    pub fresnel_computed: bool,
+    /// Schlick's F0 (F90 = 1), `None` for F = 1.
+    pub f0: Option<f64>,
+    /// `norm`, or `F0·norm + (1 − F0)·fresnel`.
+    pub magnitude: f64,
+    /// The table's lit value, `magnitude·form_factor`.
+    pub table: f64,
+    /// The exact value: `∫_P F f cos` by quadrature ([`lit_reference_schlick`]), with its
+    /// error estimate.
+    pub exact: f64,
+    pub exact_error: f64,
+    /// `(table − exact)/exact`.
+    pub relative_error: f64,
+}
+
+/// The lit value of `light` at the point `x` (in the kind's order) of the `ltc` table
+/// `spec`, from `looked_up` (the kind's computed channels, [`ltc_channels`] order, as a
+/// lookup there gives them: `None` where the texture holds no such channel): `M⁻¹` rebuilt
+/// from `m00, m20, m02, m22` ([`Ltc::from_heitz_texel`]), `∫_P D` in closed form, times the
+/// norm (with `f0`, Schlick's `F0·norm + (1 − F0)·fresnel`), next to the BRDF's own lit value
+/// by quadrature to relative `rel_tol`. A norm or Fresnel channel the table does not hold
+/// (Heitz's layout keeps them in a second texture) is brdfbake's integral at the point,
+/// which the table's would hold.
+pub fn lit_probe(
+    spec: &TableSpec,
+    x: &[f64],
+    looked_up: &[Option<f64>],
+    light: &PolygonLight,
+    f0: Option<f64>,
+    rel_tol: f64,
+) -> Result<LitProbe, String> {
+    let chans = ltc_channels(spec);
+    let get = |c: LtcChannel| {
+        chans
+            .iter()
+            .position(|&k| k == c)
+            .and_then(|i| looked_up.get(i).copied().flatten())
+    };
+    let m = [
+        LtcChannel::M00,
+        LtcChannel::M20,
+        LtcChannel::M02,
+        LtcChannel::M22,
+    ]
+    .map(get);
+    let [Some(m00), Some(m20), Some(m02), Some(m22)] = m else {
+        return Err(
+            "the table holds no matrix channels (m00, m20, m02, m22): probe the texture that does              (Heitz's layout: ltc_1) for a lit value"
+                .into(),
+        );
+    };
+    let (mu, alpha) = view_and_alpha(spec, x)?;
+    let ltc = Ltc::from_heitz_texel([m00, m20, m02, m22])
+        .map_err(|e| format!("the looked-up matrix is no LTC: {e}"))?;
+    let form_factor = ltc_polygon_integral(&ltc, &light.verts).map_err(|e| e.to_string())?;
+    let brdf = spec.model.brdf(alpha)?;
+    if let Some(s) = &brdf.specular {
+        s.prepare();
+    }
+    let (mut norm, mut fresnel) = (get(LtcChannel::Norm), get(LtcChannel::Fresnel));
+    let (norm_computed, fresnel_computed) = (norm.is_none(), f0.is_some() && fresnel.is_none());
+    if norm_computed || fresnel_computed {
+        let nf = norm_and_fresnel(&brdf, mu, rel_tol);
+        norm = norm.or(Some(nf.norm));
+        fresnel = fresnel.or(Some(nf.fresnel));
+    }
+    let norm = norm.expect("set");
+    let magnitude = match (f0, fresnel) {
+        (Some(f0), Some(fr)) => f0 * norm + (1.0 - f0) * fr,
+        _ => norm,
+    };
+    let table = magnitude * form_factor;
+    let r = lit_reference_schlick(&brdf, alpha, mu, light, f0, rel_tol)
+        .map_err(|e| format!("the exact value: {e}"))?;
+    Ok(LitProbe {
+        mu,
+        alpha,
+        ltc,
+        form_factor,
+        norm,
+        norm_computed,
+        fresnel: f0.and(fresnel),
+        fresnel_computed,
+        f0,
+        magnitude,
+        table,
+        exact: r.value,
+        exact_error: r.error,
+        relative_error: (table - r.value) / r.value,
+    })
+}
+
+/// The exact value of every channel of an `ltc` or `ltc-sphere` table at the physical
+/// coordinates `x` (one per axis, in the kind's order), at tolerance `tol`, with error
+/// estimates: the norm and Fresnel channels by their integrals, the sphere table in closed
+/// form at the point's position in the texture, `zero` 0. A matrix entry has no exact value
+/// (the LTC is a fit, and a fit warm-started along a path is defined at the texels only):
+/// NaN, which `probe` and `verify` treat as such (they measure the lit value, and refit).
+pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<(Vec<f64>, Vec<f64>), String> {
+    if x.len() != spec.axes.len() {
+        return Err(format!(
+            "{} coordinates for {} axes",
+            x.len(),
+            spec.axes.len()
+        ));
+    }
+    if spec.kind == TableKind::LtcSphere {
+        let p = [spec.axes[0].clamped(x[0]), spec.axes[1].clamped(x[1])];
+        let v = clipped_sphere_table(p[0].clamp(-1.0, 1.0), p[1].clamp(0.0, 1.0))
+            .map_err(|e| format!("no exact value there: {e}"))?;
+        return Ok((vec![v], vec![0.0]));
+    }
+    let (mu, alpha) = view_and_alpha(spec, x)?;
     let chans = ltc_channels(spec);
     let nf = if chans
         .iter()
