@@ -75,6 +75,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),
     (
+        "eevee-brdf-ggx",
+        include_str!("../presets/engines/eevee-brdf-ggx.json"),
+    ),
+    (
         "gltf-lut-charlie",
         include_str!("../presets/engines/gltf-lut-charlie.json"),
     ),
