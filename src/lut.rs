@@ -47,7 +47,9 @@ pub enum Quantity {
 /// coordinate `x` (a cosine, a roughness, …). The axis' `range` is a range of `p`. Engines
 /// space their view axes in √(1 − cos θ) (EEVEE, the LTC tables), in θ itself (older LTC
 /// tables) or in √cos θ (texels at (i/N)² in cos θ: BSDL), to put more texels where the
-/// tabulated function changes fastest.
+/// tabulated function changes fastest; their index axes in √((η − 1)/(η + 1)) (Cycles) or
+/// in η² (EEVEE). Every warp is strictly monotone on its coordinate domain, so it has an
+/// exact inverse there.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Warp {
@@ -60,10 +62,26 @@ pub enum Warp {
     Sqrt,
     /// `p = acos x` in radians, `x = cos p`; p in [0, π/2] (cosine axes).
     Acos,
+    /// `p = x²`, `x = √p`; p in [0, 1] (cosine and Fresnel axes: EEVEE's η² axis).
+    Square,
+    /// EEVEE's critical-angle remap of the view cosine `x = μ` of a table whose relative index
+    /// η < 1 has the critical cosine `c = √(1 − η²)` (0 for η ≥ 1; η is the texel's own, from
+    /// the table's fresnel axis): `p = μ/(2c)` for μ ≤ c, `p = 1/2 + (μ − c)/(2(1 − c))`
+    /// above; inverse `t = 2p − 1`, `μ = c + t·c` for t ≤ 0, `μ = c + t·(1 − c)` above. The
+    /// first half of the texels lies below the critical angle (total internal reflection of
+    /// a smooth interface), the second half above it. p in [0, 1].
+    CriticalAngle,
 }
 
 impl Warp {
-    pub const ALL: [Warp; 4] = [Warp::Linear, Warp::SqrtOneMinus, Warp::Sqrt, Warp::Acos];
+    pub const ALL: [Warp; 6] = [
+        Warp::Linear,
+        Warp::SqrtOneMinus,
+        Warp::Sqrt,
+        Warp::Acos,
+        Warp::Square,
+        Warp::CriticalAngle,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -71,6 +89,8 @@ impl Warp {
             Warp::SqrtOneMinus => "sqrt-one-minus",
             Warp::Sqrt => "sqrt",
             Warp::Acos => "acos",
+            Warp::Square => "square",
+            Warp::CriticalAngle => "critical-angle",
         }
     }
 
@@ -81,6 +101,10 @@ impl Warp {
             Warp::SqrtOneMinus => "p = sqrt(1 - x)",
             Warp::Sqrt => "p = sqrt(x)",
             Warp::Acos => "p = acos(x) (radians)",
+            Warp::Square => "p = x^2",
+            Warp::CriticalAngle => {
+                "p = x/(2c) for x <= c, 0.5 + (x - c)/(2(1 - c)) for x > c, with c = sqrt(1 - eta^2) (0 for eta >= 1) of the texel's relative index eta (the fresnel axis)"
+            }
         }
     }
 
@@ -91,7 +115,17 @@ impl Warp {
             Warp::SqrtOneMinus => "x = 1 - p^2",
             Warp::Sqrt => "x = p^2",
             Warp::Acos => "x = cos(p)",
+            Warp::Square => "x = sqrt(p)",
+            Warp::CriticalAngle => {
+                "x = c + t*c for t <= 0, c + t*(1 - c) for t > 0, with t = 2p - 1 and c = sqrt(1 - eta^2) (0 for eta >= 1)"
+            }
         }
+    }
+
+    /// Whether the warp depends on another axis of the table (the critical angle: on the
+    /// relative index of the fresnel axis).
+    pub fn is_coupled(self) -> bool {
+        self == Warp::CriticalAngle
     }
 
     /// The parameters the warp is defined for (the accepted `range`); `None` for any finite
@@ -99,7 +133,9 @@ impl Warp {
     pub fn parameter_domain(self) -> Option<[f64; 2]> {
         match self {
             Warp::Linear => None,
-            Warp::SqrtOneMinus | Warp::Sqrt => Some([0.0, 1.0]),
+            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Square | Warp::CriticalAngle => {
+                Some([0.0, 1.0])
+            }
             Warp::Acos => Some([0.0, std::f64::consts::FRAC_PI_2]),
         }
     }
@@ -109,12 +145,21 @@ impl Warp {
     pub fn coordinate_domain(self) -> Option<[f64; 2]> {
         match self {
             Warp::Linear => None,
-            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Acos => Some([0.0, 1.0]),
+            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Acos | Warp::Square | Warp::CriticalAngle => {
+                Some([0.0, 1.0])
+            }
         }
     }
 
-    /// `p` of coordinate `x` (clamped into the warp's domain).
+    /// `p` of coordinate `x` (clamped into the warp's domain); a coupled warp at the
+    /// critical cosine c = 0 (an index η ≥ 1): use [`Warp::parameter_at`] with the texel's own.
     pub fn parameter(self, x: f64) -> f64 {
+        self.parameter_at(x, 0.0)
+    }
+
+    /// `p` of coordinate `x` (clamped into the warp's domain), the critical-angle warp at
+    /// the critical cosine `c` (ignored by the others).
+    pub fn parameter_at(self, x: f64, c: f64) -> f64 {
         let x = match self.coordinate_domain() {
             Some([lo, hi]) => x.clamp(lo, hi),
             None => x,
@@ -124,17 +169,52 @@ impl Warp {
             Warp::SqrtOneMinus => (1.0 - x).sqrt(),
             Warp::Sqrt => x.sqrt(),
             Warp::Acos => x.acos(),
+            Warp::Square => x * x,
+            // (as the shader snippets write it: at c = 0, x = 0 gives p = 0, and at c = 1
+            // every x ≤ c; the texels of the empty half all hold the value at x = c)
+            Warp::CriticalAngle => {
+                if x <= c {
+                    0.5 * x / c.max(1e-30)
+                } else {
+                    0.5 + 0.5 * (x - c) / (1.0 - c).max(1e-30)
+                }
+            }
         }
     }
 
-    /// The coordinate `x` of parameter `p`.
+    /// The coordinate `x` of parameter `p`; a coupled warp at c = 0 (see [`Warp::parameter`]).
     pub fn coordinate(self, p: f64) -> f64 {
+        self.coordinate_at(p, 0.0)
+    }
+
+    /// The coordinate `x` of parameter `p`, the critical-angle warp at the critical cosine
+    /// `c` (ignored by the others).
+    pub fn coordinate_at(self, p: f64, c: f64) -> f64 {
         match self {
             Warp::Linear => p,
             Warp::SqrtOneMinus => 1.0 - p * p,
             Warp::Sqrt => p * p,
             Warp::Acos => p.cos(),
+            Warp::Square => p.max(0.0).sqrt(),
+            Warp::CriticalAngle => {
+                let t = 2.0 * p - 1.0;
+                if t > 0.0 {
+                    c + t * (1.0 - c)
+                } else {
+                    c + t * c
+                }
+            }
         }
+    }
+}
+
+/// The critical cosine `c = √(1 − η²)` of a relative index η (0 for η ≥ 1, where there is
+/// no total internal reflection): the parameter of the critical-angle warp.
+pub fn critical_cosine(eta: f64) -> f64 {
+    if eta >= 1.0 {
+        0.0
+    } else {
+        ((1.0 - eta) * (1.0 + eta)).max(0.0).sqrt()
     }
 }
 
@@ -196,15 +276,27 @@ impl Axis {
         lo + (hi - lo) * t
     }
 
-    /// The coordinate `x_i = warp⁻¹(p_i)` of texel `i`, before the clamp.
+    /// The coordinate `x_i = warp⁻¹(p_i)` of texel `i`, before the clamp (a coupled warp at
+    /// c = 0: see [`Axis::nominal_coord_at`]).
     pub fn nominal_coord(&self, i: usize) -> f64 {
         self.warp.coordinate(self.parameter(i))
     }
 
+    /// [`Axis::nominal_coord`] of a critical-angle axis in a slice whose critical cosine is
+    /// `c` ([`critical_cosine`]; other warps ignore it).
+    pub fn nominal_coord_at(&self, i: usize, c: f64) -> f64 {
+        self.warp.coordinate_at(self.parameter(i), c)
+    }
+
     /// The coordinate of texel `i` in the axis' own quantity, where its value is evaluated:
-    /// `clamp(x_i)`.
+    /// `clamp(x_i)` (a coupled warp at c = 0: see [`Axis::coord_at`]).
     pub fn coord(&self, i: usize) -> f64 {
         self.clamped(self.nominal_coord(i))
+    }
+
+    /// [`Axis::coord`] of a critical-angle axis in a slice whose critical cosine is `c`.
+    pub fn coord_at(&self, i: usize, c: f64) -> f64 {
+        self.clamped(self.nominal_coord_at(i, c))
     }
 
     /// `x` clamped as the texels' coordinates are: the point whose value the table holds
@@ -222,7 +314,8 @@ impl Axis {
     }
 
     /// The smallest and largest coordinate the axis' texels cover (before the clamp): the
-    /// range of `x` a lookup interpolates in.
+    /// range of `x` a lookup interpolates in. (A critical-angle axis spans [0, 1] whatever
+    /// its critical cosine: both ends map to the range ends.)
     pub fn coordinate_span(&self) -> [f64; 2] {
         let [a, b] = self.range.map(|p| self.warp.coordinate(p));
         [a.min(b), a.max(b)]
@@ -265,20 +358,32 @@ impl Axis {
     }
 
     /// The normalized parameter `t = (warp(x) − lo)/(hi − lo)` of coordinate `x`, clamped
-    /// to [0, 1]; 0 on an axis of one texel.
+    /// to [0, 1]; 0 on an axis of one texel. (A coupled warp at c = 0: see
+    /// [`Axis::normalized_at`].)
     pub fn normalized(&self, x: f64) -> f64 {
+        self.normalized_at(x, 0.0)
+    }
+
+    /// [`Axis::normalized`] of a critical-angle axis at the critical cosine `c`.
+    pub fn normalized_at(&self, x: f64, c: f64) -> f64 {
         let [lo, hi] = self.range;
         if hi == lo {
             return 0.0;
         }
-        ((self.warp.parameter(x) - lo) / (hi - lo)).clamp(0.0, 1.0)
+        ((self.warp.parameter_at(x, c) - lo) / (hi - lo)).clamp(0.0, 1.0)
     }
 
     /// The continuous texel-space position of coordinate `x` (texel i at position i),
-    /// clamped to `[0, size − 1]` as clamp-to-edge sampling does.
+    /// clamped to `[0, size − 1]` as clamp-to-edge sampling does. (A coupled warp at c = 0:
+    /// see [`Axis::texel_position_at`].)
     pub fn texel_position(&self, x: f64) -> f64 {
+        self.texel_position_at(x, 0.0)
+    }
+
+    /// [`Axis::texel_position`] of a critical-angle axis at the critical cosine `c`.
+    pub fn texel_position_at(&self, x: f64, c: f64) -> f64 {
         let [lo, hi] = self.range;
-        let p = self.warp.parameter(x);
+        let p = self.warp.parameter_at(x, c);
         let t = if hi != lo { (p - lo) / (hi - lo) } else { 0.0 };
         let pos = match self.convention {
             Convention::Centers => t * self.size as f64 - 0.5,
@@ -289,8 +394,68 @@ impl Axis {
 
     /// The normalized texture coordinate a GPU must sample for coordinate `x`.
     pub fn texture_coordinate(&self, x: f64) -> f64 {
-        (self.texel_position(x) + 0.5) / self.size as f64
+        self.texture_coordinate_at(x, 0.0)
     }
+
+    /// [`Axis::texture_coordinate`] of a critical-angle axis at the critical cosine `c`.
+    pub fn texture_coordinate_at(&self, x: f64, c: f64) -> f64 {
+        (self.texel_position_at(x, c) + 0.5) / self.size as f64
+    }
+}
+
+/// The critical cosine of every texel of the axis named `fresnel` of `axes` (`[0.0]` where
+/// there is none): the parameter a critical-angle axis takes in each slice.
+pub fn critical_cosines(axes: &[Axis]) -> Vec<f64> {
+    match axes.iter().find(|a| a.name == "fresnel") {
+        Some(f) => (0..f.size)
+            .map(|i| f.fresnel_parameter(i).map_or(0.0, critical_cosine))
+            .collect(),
+        None => vec![0.0],
+    }
+}
+
+/// The critical cosine a coupled (critical-angle) axis of `axes` takes at texel `idx` (one
+/// index per axis, in the same order): from the relative index of the axis named `fresnel`;
+/// 0 where there is none or its index is ≥ 1.
+pub fn critical_cosine_at_texel(axes: &[Axis], idx: &[usize]) -> f64 {
+    axes.iter()
+        .zip(idx)
+        .find(|(a, _)| a.name == "fresnel")
+        .and_then(|(a, &i)| a.fresnel_parameter(i))
+        .map_or(0.0, critical_cosine)
+}
+
+/// The critical cosine a coupled axis of `axes` takes at the physical coordinates `x` (one
+/// per axis): from the relative index of the fresnel axis' (clamped) coordinate.
+pub fn critical_cosine_at(axes: &[Axis], x: &[f64]) -> f64 {
+    axes.iter()
+        .zip(x)
+        .find(|(a, _)| a.name == "fresnel")
+        .and_then(|(a, &v)| match a.quantity {
+            Quantity::Fresnel(q) if q.is_eta() => Some(q.to_parameter(a.clamped(v))),
+            _ => None,
+        })
+        .map_or(0.0, critical_cosine)
+}
+
+/// The coordinates of texel `idx` (one index per axis), each in its axis' own quantity and
+/// clamped: [`Axis::coord`], a critical-angle axis at its texel's critical cosine.
+pub fn texel_coordinates(axes: &[Axis], idx: &[usize]) -> Vec<f64> {
+    let c = critical_cosine_at_texel(axes, idx);
+    axes.iter()
+        .zip(idx)
+        .map(|(a, &i)| a.coord_at(i, c))
+        .collect()
+}
+
+/// [`texel_coordinates`] before the clamp: [`Axis::nominal_coord`] of every axis, a
+/// critical-angle axis at its texel's critical cosine.
+pub fn texel_nominal_coordinates(axes: &[Axis], idx: &[usize]) -> Vec<f64> {
+    let c = critical_cosine_at_texel(axes, idx);
+    axes.iter()
+        .zip(idx)
+        .map(|(a, &i)| a.nominal_coord_at(i, c))
+        .collect()
 }
 
 /// One channel of a table.
@@ -377,8 +542,9 @@ impl Lut {
         let mut lo = [0usize; 3];
         let mut hi = [0usize; 3];
         let mut fr = [0.0f64; 3];
+        let c = critical_cosine_at(&self.axes, x);
         for (k, a) in self.axes.iter().enumerate() {
-            let p = a.texel_position(x[k]);
+            let p = a.texel_position_at(x[k], c);
             let i0 = p.floor() as usize;
             let i1 = (i0 + 1).min(a.size - 1);
             lo[k] = i0;

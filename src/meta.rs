@@ -153,6 +153,33 @@ fn texture_axis(k: usize) -> &'static str {
     ["u", "v", "w (slice)"][k]
 }
 
+/// [`axis_json`] of every axis of a table; a critical-angle axis, whose texels sit at
+/// other coordinates in every slice of the fresnel axis, lists its coordinates per fresnel
+/// texel (`coordinates[f][i]`: texel i in fresnel texel f).
+fn axes_json(axes: &[Axis]) -> Vec<Value> {
+    axes.iter()
+        .enumerate()
+        .map(|(k, a)| {
+            let mut v = axis_json(k, a);
+            if a.warp.is_coupled() {
+                let cs = crate::lut::critical_cosines(axes);
+                let per = |f: &dyn Fn(usize, f64) -> f64| {
+                    cs.iter()
+                        .map(|&c| (0..a.size).map(|i| f(i, c)).collect::<Vec<_>>())
+                        .collect::<Vec<_>>()
+                };
+                v["coordinates"] = json!(per(&|i, c| a.coord_at(i, c)));
+                v["coordinates_index"] = json!("[fresnel texel][texel]: each fresnel texel's critical cosine c places this axis' texels");
+                v["critical_cosines"] = json!(cs);
+                if a.clamp.is_some() {
+                    v["nominal_coordinates"] = json!(per(&|i, c| a.nominal_coord_at(i, c)));
+                }
+            }
+            v
+        })
+        .collect()
+}
+
 pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
     let [lo, hi] = a.range;
     // what is uniform in the texels: x itself, or the warp's parameter p
@@ -386,7 +413,7 @@ pub fn metadata_with_fit(
             "size": dims,
         },
         "model": model_json(spec),
-        "axes": lut.axes.iter().enumerate().map(|(k, a)| axis_json(k, a)).collect::<Vec<_>>(),
+        "axes": axes_json(&lut.axes),
         "channels": channels_json(table, lut),
         "reconstruction": reconstruction(spec),
         "storage": {

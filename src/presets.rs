@@ -79,6 +79,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),
     (
+        "eevee-brdf-ggx",
+        include_str!("../presets/engines/eevee-brdf-ggx.json"),
+    ),
+    (
+        "eevee-btdf-split-sum-ggx",
+        include_str!("../presets/engines/eevee-btdf-split-sum-ggx.json"),
+    ),
+    (
         "gltf-lut-charlie",
         include_str!("../presets/engines/gltf-lut-charlie.json"),
     ),

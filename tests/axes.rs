@@ -67,6 +67,8 @@ fn expected_coordinate(warp: Warp, p: f64) -> f64 {
         Warp::SqrtOneMinus => 1.0 - p * p,
         Warp::Sqrt => p * p,
         Warp::Acos => p.cos(),
+        Warp::Square => p.sqrt(),
+        Warp::CriticalAngle => unreachable!("not on a g1 table"),
     }
 }
 
@@ -77,6 +79,7 @@ fn texels_sit_at_the_warped_coordinates() {
         (Warp::SqrtOneMinus, [0.0, 1.0]),
         (Warp::Sqrt, [0.0, 1.0]),
         (Warp::Acos, [0.0, FRAC_PI_2]),
+        (Warp::Square, [0.0, 1.0]),
     ] {
         for conv in [Convention::Centers, Convention::Endpoints] {
             let n = 9;
@@ -473,4 +476,154 @@ fn clamped_rows_are_computed_once_and_hold_the_clamped_value() {
             }
         }
     }
+}
+
+/// The critical-angle warp (EEVEE's `btdf_split_sum_ggx` view axis), whose parameter
+/// depends on the relative index η of the texel's fresnel coordinate through the critical
+/// cosine c = √(1 − η²): texel p sits at t = 2p − 1, x = c + t·c (t ≤ 0) or c + t·(1 − c)
+/// (t > 0), and the inverse p = x/(2c) (x ≤ c) or 1/2 + (x − c)/(2(1 − c)). The inverse
+/// undoes the texel formula (both in f64: within 1e-15 for c away from 0 and 1), x = c sits
+/// at p = 1/2 for every c, and η ≥ 1 has no critical angle (c = 0). Negative control: the
+/// inverse at the wrong slice's c does not give back p.
+#[test]
+fn critical_angle_warp_inverts_at_every_critical_cosine() {
+    use brdfbake::lut::critical_cosine;
+    assert_eq!(critical_cosine(1.0), 0.0);
+    assert_eq!(critical_cosine(1.5), 0.0);
+    assert!((critical_cosine(0.6) - 0.8).abs() <= 1e-15);
+    let w = Warp::CriticalAngle;
+    for c in [0.05, 0.3, 0.5, 0.8, 0.99] {
+        assert!((w.coordinate_at(0.5, c) - c).abs() <= 1e-15);
+        assert!((w.parameter_at(c, c) - 0.5).abs() <= 1e-15);
+        assert_eq!(w.coordinate_at(0.0, c), 0.0);
+        assert!((w.coordinate_at(1.0, c) - 1.0).abs() <= 1e-15);
+        for i in 0..=20 {
+            let p = i as f64 / 20.0;
+            let x = w.coordinate_at(p, c);
+            let t = 2.0 * p - 1.0;
+            let want = c + t * if t > 0.0 { 1.0 - c } else { c };
+            assert!((x - want).abs() <= 1e-15, "c {c} p {p}: {x} vs {want}");
+            assert!(
+                (w.parameter_at(x, c) - p).abs() <= 1e-14,
+                "c {c} p {p}: inverse {}",
+                w.parameter_at(x, c)
+            );
+        }
+        let wrong = w.parameter_at(w.coordinate_at(0.25, c), 1.0 - c);
+        if (c - 0.5).abs() > 0.1 {
+            assert!((wrong - 0.25).abs() > 0.01, "c {c}: {wrong}");
+        }
+    }
+}
+
+/// A critical-angle axis is accepted only on a dielectric table's view axis (it needs the
+/// fresnel axis' η), and a slice whose texels reach cos θ = 0 unclamped is named with its
+/// index and η; the square warp applies to cosine and fresnel axes.
+#[test]
+fn critical_angle_warp_is_refused_where_it_has_no_meaning() {
+    let g1 = r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "g", "kind": "g1",
+        "model": {"ndf": "ggx"},
+        "axes": {"cos_theta": {"size": 4, "warp": "critical-angle"}, "roughness": {"size": 4, "quantity": "alpha"}}}]}"#;
+    let e = brdfbake::preset::parse(g1, "p.json", "p")
+        .expect_err("critical-angle on a g1 table")
+        .to_string();
+    assert!(
+        e.contains("axes.cos_theta.warp") && e.contains("dielectric-btdf"),
+        "{e}"
+    );
+    let btdf = |cos: &str| {
+        format!(
+            r#"{{"schema": "brdfbake.preset/1", "tables": [{{"name": "t", "kind": "dielectric-btdf",
+            "model": {{"ndf": "ggx", "masking": "smith-separable"}},
+            "axes": {{"cos_theta_v": {cos}, "roughness": {{"size": 3, "quantity": "perceptual", "range": [0.2, 0.8], "convention": "endpoints"}},
+                     "fresnel": {{"size": 3, "quantity": "eta", "warp": "square", "range": [0.25, 1], "convention": "endpoints"}}}}}}]}}"#
+        )
+    };
+    let e = brdfbake::preset::parse(
+        &btdf(r#"{"size": 5, "warp": "critical-angle", "convention": "endpoints"}"#),
+        "p.json",
+        "p",
+    )
+    .expect_err("a texel at cos 0")
+    .to_string();
+    assert!(
+        e.contains("axes.cos_theta_v") && e.contains("cosine 0"),
+        "{e}"
+    );
+    let ok = brdfbake::preset::parse(
+        &btdf(r#"{"size": 5, "warp": "critical-angle", "convention": "endpoints", "clamp": [1e-3, 1]}"#),
+        "p.json",
+        "p",
+    )
+    .expect("clamped: accepted");
+    // slice 0: eta = sqrt(0.25) = 0.5, c = sqrt(0.75); texel 2 sits at c
+    let t = &ok.tables[0];
+    let mu = brdfbake::table::dielectric::view_cosine(&t.spec, 2, 0);
+    assert!((mu - 0.75f64.sqrt()).abs() <= 1e-15, "{mu}");
+    let last = brdfbake::table::dielectric::view_cosine(&t.spec, 2, 2);
+    assert!((last - 1e-3).abs() <= 1e-15, "eta = 1: c = 0, {last}");
+}
+
+/// The CLI end to end on a small table with EEVEE's btdf axes (η² along u, the
+/// critical-angle view axis along v, roughness layers): the sidecar lists the view axis'
+/// coordinates per fresnel texel, the GLSL snippet computes the critical cosine and the
+/// remap, `inspect` names the warps, `probe` samples through them (interpolation error of a
+/// 6 × 9 × 3 table of R, T: under 0.1), and `verify --all` recomputes every texel at its own
+/// coordinates.
+#[test]
+fn critical_angle_tables_through_the_cli() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = dir.path();
+    std::fs::write(
+        w.join("btdf.json"),
+        r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "t", "kind": "dielectric-btdf",
+            "model": {"ndf": "ggx", "masking": "smith-separable"},
+            "axes": {"cos_theta_v": {"size": 9, "convention": "endpoints", "warp": "critical-angle", "clamp": [1e-4, 0.9999]},
+                     "roughness": {"size": 3, "quantity": "perceptual", "convention": "endpoints", "range": [0.3, 0.9]},
+                     "fresnel": {"size": 6, "quantity": "eta", "warp": "square", "range": [0.2, 1], "convention": "endpoints"}},
+            "axis_order": ["fresnel", "cos_theta_v", "roughness"],
+            "formats": ["exr", "glsl"]}]}"#,
+    )
+    .unwrap();
+    let o = run(w, &["bake", "btdf.json", "--out", "out"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let sidecar: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(w.join("out/btdf/t.json")).unwrap()).unwrap();
+    let ax = &sidecar["axes"][1];
+    assert_eq!(ax["warp"]["name"], "critical-angle", "{ax}");
+    // fresnel texel 0: eta^2 = 0.2, c = sqrt(0.8); view texel 4 (p = 1/2) sits at c
+    let c0 = 0.8f64.sqrt();
+    let at = ax["coordinates"][0][4].as_f64().unwrap();
+    assert!((at - c0).abs() <= 1e-15, "{ax}");
+    // fresnel texel 5: eta = 1, c = 0: the lower half at 0, clamped to 1e-4
+    assert_eq!(ax["coordinates"][5][0], 1e-4, "{ax}");
+    let glsl = std::fs::read_to_string(w.join("out/btdf/t.glsl")).unwrap();
+    assert!(
+        glsl.contains("sqrt(max((1.0 - eta") && glsl.contains(" * clamp("),
+        "{glsl}"
+    );
+    let o = run(w, &["inspect", "out/btdf/t.exr"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && out.contains("critical-angle") && out.contains("square"),
+        "{out}"
+    );
+    let o = run(
+        w,
+        &[
+            "probe",
+            "out/btdf/t.exr",
+            "--at",
+            "fresnel=0.7,cos_theta_v=0.6,roughness=0.5",
+            "--json",
+        ],
+    );
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for c in 0..2 {
+        let diff = v["channels"][c]["difference"].as_f64().unwrap();
+        assert!(diff.abs() < 0.1, "{v}");
+    }
+    let o = run(w, &["verify", "out/btdf/t.json", "--all"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
 }

@@ -103,6 +103,31 @@ fn cases() -> Vec<Case> {
             vec![("scale".to_string(), "0.001".to_string())],
         ),
         (
+            "btdf-critical",
+            test_lut(
+                {
+                    use brdfbake::lut::Warp;
+                    use brdfbake::model::FresnelQuantity;
+                    vec![
+                        Axis {
+                            quantity: Quantity::Fresnel(FresnelQuantity::Eta),
+                            warp: Warp::Square,
+                            clamp: Some([1e-4, 1.0]),
+                            ..axis("fresnel", 6, Endpoints)
+                        },
+                        Axis {
+                            warp: Warp::CriticalAngle,
+                            clamp: Some([1e-4, 0.9999]),
+                            ..axis("cos_theta_v", 8, Endpoints)
+                        },
+                        axis("roughness", 4, Endpoints),
+                    ]
+                },
+                2,
+            ),
+            vec![],
+        ),
+        (
             "line",
             test_lut(vec![axis("roughness", 10, Endpoints)], 3),
             vec![],

@@ -38,6 +38,27 @@ fn axis(name: &str, size: usize, range: [f64; 2], convention: Convention) -> Axi
     }
 }
 
+/// EEVEE's `btdf_split_sum_ggx` axes, smaller: η² along u (a `square` warp, η clamped),
+/// the view cosine in the critical-angle remap of each texel's η along v, roughness slices.
+fn critical_angle_axes(convention: Convention) -> Vec<Axis> {
+    use brdfbake::lut::Warp;
+    use brdfbake::model::FresnelQuantity;
+    vec![
+        Axis {
+            quantity: Quantity::Fresnel(FresnelQuantity::Eta),
+            warp: Warp::Square,
+            clamp: Some([1e-4, 1.0]),
+            ..axis("fresnel", 6, [0.0, 1.0], convention)
+        },
+        Axis {
+            warp: Warp::CriticalAngle,
+            clamp: Some([1e-4, 0.9999]),
+            ..axis("cos_theta_v", 8, [0.0, 1.0], convention)
+        },
+        axis("roughness", 4, [0.0, 1.0], convention),
+    ]
+}
+
 /// A table with pseudo-random texels (so that any index mix-up shows).
 fn lut(axes: Vec<Axis>, nc: usize) -> Lut {
     let n: usize = axes.iter().map(|a| a.size).product();
@@ -125,6 +146,7 @@ fn tables() -> Vec<(&'static str, Lut)> {
                 2,
             ),
         ),
+        ("btdf-critical", lut(critical_angle_axes(Endpoints), 2)),
         (
             "single",
             lut(
@@ -420,9 +442,15 @@ fn snippets_document_sampling_and_hold_the_transform_constants() {
                     assert!(src.contains(&format!("s{k}_ = 0.5;")), "{src}");
                     continue;
                 }
+                // (a warped axis' parameter is p = warp(x), in a local of its own)
+                let p = if a.warp == brdfbake::lut::Warp::Linear {
+                    a.name.clone()
+                } else {
+                    format!("p{k}_")
+                };
                 let t = format!(
                     "clamp(({} - {}) / ({} - {}), 0.0, 1.0);",
-                    a.name,
+                    p,
                     lit(lo),
                     lit(hi),
                     lit(lo)

@@ -162,14 +162,9 @@ pub fn verify_texels(
                 stopped.store(true, Relaxed);
                 return Ok(Vec::new());
             }
-            let x: Vec<f64> = lut
-                .axes
-                .iter()
-                .enumerate()
-                // (the texel's own coordinate; exact_at applies the clamp, and an ltc table's
-                // sphere channel depends on the unclamped position)
-                .map(|(k, a)| a.nominal_coord(idx[k]))
-                .collect();
+            // (the texel's own coordinate; exact_at applies the clamp, and an ltc table's
+            // sphere channel depends on the unclamped position)
+            let x = crate::lut::texel_nominal_coordinates(&lut.axes, idx);
             crate::readback::exact_at(&table.spec, &table.to_kind_order(&x), REFERENCE_TOLERANCE)
                 .map(|r| table.stored_values(&r.0))
         })
@@ -199,8 +194,12 @@ pub type LookupError = (f64, Vec<f64>, f64, f64);
 /// The middle of the cell of `lut` that starts at texel `idx` (the cell before it on an
 /// axis' last texel; an axis of one texel stays at it), in physical coordinates: where linear
 /// interpolation errs the most along every axis at once.
+///
+/// A critical-angle axis is halved in its parameter, at the critical cosine of the middle's
+/// relative index (as a lookup there places it).
 pub fn cell_middle(lut: &Lut, idx: &[usize; 3]) -> Vec<f64> {
-    lut.axes
+    let mut x: Vec<f64> = lut
+        .axes
         .iter()
         .enumerate()
         .map(|(k, a)| {
@@ -210,7 +209,16 @@ pub fn cell_middle(lut: &Lut, idx: &[usize; 3]) -> Vec<f64> {
             let i = idx[k].min(a.size - 2);
             0.5 * (a.coord(i) + a.coord(i + 1))
         })
-        .collect()
+        .collect();
+    let c = crate::lut::critical_cosine_at(&lut.axes, &x);
+    for (k, a) in lut.axes.iter().enumerate() {
+        if a.warp.is_coupled() && a.size > 1 {
+            let i = idx[k].min(a.size - 2);
+            let p = 0.5 * (a.parameter(i) + a.parameter(i + 1));
+            x[k] = a.clamped(a.warp.coordinate_at(p, c));
+        }
+    }
+    x
 }
 
 /// Measures the lookup error between texels: at the middle of the cell of every texel of

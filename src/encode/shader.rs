@@ -100,6 +100,7 @@ fn storage_note(attributes: &[(String, String)]) -> Option<String> {
 /// If `x` does not hold one coordinate per axis.
 pub fn texture_coordinates(lut: &Lut, x: &[f64]) -> Vec<f64> {
     assert_eq!(x.len(), lut.axes.len(), "one coordinate per axis");
+    let c = crate::lut::critical_cosine_at(&lut.axes, x);
     lut.axes
         .iter()
         .zip(x)
@@ -107,7 +108,7 @@ pub fn texture_coordinates(lut: &Lut, x: &[f64]) -> Vec<f64> {
             if a.size == 1 {
                 return 0.5;
             }
-            let t = a.normalized(x);
+            let t = a.normalized_at(x, c);
             match a.convention {
                 Convention::Centers => t,
                 Convention::Endpoints => (0.5 + t * (a.size - 1) as f64) / a.size as f64,
@@ -435,6 +436,20 @@ impl Gen<'_> {
                     Warp::SqrtOneMinus => format!("sqrt(1.0 - {xc})"),
                     Warp::Sqrt => format!("sqrt({xc})"),
                     Warp::Acos => format!("acos({xc})"),
+                    Warp::Square => format!("{xc} * {xc}"),
+                    Warp::CriticalAngle => {
+                        s.push_str(&self.critical_cosine(k));
+                        s.push_str(&self.local(&format!("x{k}_"), &xc));
+                        // both branches are finite (WGSL's select evaluates both)
+                        let below = format!("0.5 * x{k}_ / max(c{k}_, 1e-30)");
+                        let above =
+                            format!("0.5 + 0.5 * (x{k}_ - c{k}_) / max(1.0 - c{k}_, 1e-30)");
+                        let cond = format!("x{k}_ <= c{k}_");
+                        match self.lang {
+                            ShaderLang::Wgsl => format!("select({above}, {below}, {cond})"),
+                            _ => format!("({cond}) ? {below} : {above}"),
+                        }
+                    }
                     Warp::Linear => unreachable!("handled above"),
                 };
                 s.push_str(&self.local(&format!("p{k}_"), &expr));
@@ -454,6 +469,39 @@ impl Gen<'_> {
             ),
         };
         s.push_str(&self.local(&format!("s{k}_"), &expr));
+        s
+    }
+
+    /// The statements computing `c{k}_`, the critical cosine √(1 − η²) (0 for η ≥ 1) of the
+    /// relative index η that the table's fresnel axis gives at its (clamped) argument: the
+    /// parameter of axis k's critical-angle warp.
+    fn critical_cosine(&self, k: usize) -> String {
+        use crate::lut::Quantity;
+        use crate::model::FresnelQuantity as Q;
+        let Some((j, f)) = self
+            .lut
+            .axes
+            .iter()
+            .enumerate()
+            .find(|(_, a)| a.name == "fresnel")
+        else {
+            return self.local(&format!("c{k}_"), "0.0");
+        };
+        let x = &self.params[j];
+        let x = match f.clamp {
+            Some([lo, hi]) => format!("clamp({x}, {}, {})", float_literal(lo), float_literal(hi)),
+            None => x.clone(),
+        };
+        let eta = match f.quantity {
+            Quantity::Fresnel(Q::EtaReflectance) => format!("(1.0 + {x}) / (1.0 - {x})"),
+            Quantity::Fresnel(Q::InverseEtaReflectance) => format!("(1.0 - {x}) / (1.0 + {x})"),
+            _ => x,
+        };
+        let mut s = self.local(&format!("eta{k}_"), &eta);
+        s.push_str(&self.local(
+            &format!("c{k}_"),
+            &format!("sqrt(max((1.0 - eta{k}_) * (1.0 + eta{k}_), 0.0))"),
+        ));
         s
     }
 

@@ -251,6 +251,17 @@ impl Values {
                     if !label.is_empty() {
                         label.push_str(", ");
                     }
+                    if a.warp.is_coupled() {
+                        // (its coordinate differs along the fresnel axis: the parameter)
+                        let _ = write!(
+                            label,
+                            "{} = {i}: {} at p = {}",
+                            ["x", "y", "z"][k],
+                            a.name,
+                            a.parameter(i)
+                        );
+                        continue;
+                    }
                     let _ = write!(
                         label,
                         "{} = {i}: {} = {}",

@@ -136,11 +136,8 @@ fn texel_of(l: &Lut, t: usize) -> [usize; 3] {
 }
 
 fn coords_of(l: &Lut, idx: [usize; 3]) -> Vec<(String, f64)> {
-    l.axes
-        .iter()
-        .enumerate()
-        .map(|(k, a)| (a.name.clone(), a.coord(idx[k])))
-        .collect()
+    let x = crate::lut::texel_coordinates(&l.axes, &idx[..l.axes.len()]);
+    l.axes.iter().map(|a| a.name.clone()).zip(x).collect()
 }
 
 fn stats(l: &Lut, v: &[f64], exact: &[f64]) -> Stats {

@@ -76,15 +76,31 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
         }
     }
     if spec.kind != TableKind::DielectricAlbedoAvg {
-        for i in 0..spec.axes[0].size {
-            let mu = view_cosine(spec, i, 0);
-            if mu <= 0.0 {
-                return Err(format!(
-                    "axes.cos_theta_v: texel {i} is at cosine {}; a texel at cosine 0 is not allowed for a {kind} \
-                     table (its integrals divide by n.v): use the centers convention, a range starting above 0, \
-                     or a clamp",
-                    crate::numfmt::num(mu)
-                ));
+        // (a critical-angle axis puts its texels differently in every slice)
+        let slices = if spec.axes[0].warp.is_coupled() {
+            spec.axes[2].size
+        } else {
+            1
+        };
+        for z in 0..slices {
+            for i in 0..spec.axes[0].size {
+                let mu = view_cosine(spec, i, z);
+                if mu <= 0.0 {
+                    let slice = if slices > 1 {
+                        format!(
+                            " in fresnel slice {z} (eta {})",
+                            crate::numfmt::num(eta_of_slice(spec, z))
+                        )
+                    } else {
+                        String::new()
+                    };
+                    return Err(format!(
+                        "axes.cos_theta_v: texel {i}{slice} is at cosine {}; a texel at cosine 0 is not allowed for a {kind} \
+                         table (its integrals divide by n.v): use the centers convention, a range starting above 0, \
+                         or a clamp",
+                        crate::numfmt::num(mu)
+                    ));
+                }
             }
         }
     }
@@ -110,9 +126,16 @@ pub fn eta_of_slice(spec: &TableSpec, z: usize) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// The view cosine n·v of texel `i` of the `cos_theta_v` axis (the same in every slice `z`).
-pub fn view_cosine(spec: &TableSpec, i: usize, _z: usize) -> f64 {
-    spec.axes[0].coord(i)
+/// The view cosine n·v of texel `i` of the `cos_theta_v` axis in slice `z`: the same in
+/// every slice, but for a critical-angle axis ([`crate::lut::Warp::CriticalAngle`], EEVEE's
+/// `btdf_split_sum_ggx`), whose texels sit about the critical cosine √(1 − η²) of the
+/// slice's relative index η.
+pub fn view_cosine(spec: &TableSpec, i: usize, z: usize) -> f64 {
+    let a = &spec.axes[0];
+    if !a.warp.is_coupled() {
+        return a.coord(i);
+    }
+    a.coord_at(i, crate::lut::critical_cosine(eta_of_slice(spec, z)))
 }
 
 /// The masking form of a validated dielectric spec.

@@ -60,6 +60,17 @@ impl TableSpec {
                     ax.warp.name()
                 ));
             }
+            // the critical-angle remap places a view cosine about the critical angle of the
+            // fresnel axis' relative index: only a dielectric table's view axis has both
+            let coupled_kinds = [TableKind::DielectricBtdf, TableKind::DielectricAlbedo];
+            if ax.warp.is_coupled() && !(coupled_kinds.contains(&kind) && ax.name == "cos_theta_v")
+            {
+                return Err(format!(
+                    "{f}.warp \"critical-angle\" applies to the cos_theta_v axis of a {} table only (it places the \
+                     view cosines about the critical angle of the fresnel axis' relative index eta)",
+                    coupled_kinds.map(|k| k.name()).join(" or ")
+                ));
+            }
             if ax.warp != Warp::Linear && ax.quantity != Quantity::Cosine {
                 let [dlo, dhi] = ax.warp.parameter_domain().unwrap_or([lo, hi]);
                 if lo < dlo || hi > dhi {
@@ -91,9 +102,17 @@ impl TableSpec {
             }
             // the smallest coordinate of a texel, where it is evaluated (warped axes may
             // run from 1 down)
-            let first = (0..ax.size)
-                .map(|i| ax.coord(i))
-                .fold(f64::INFINITY, f64::min);
+            let first = if ax.warp.is_coupled() {
+                // in every slice (each has its own critical cosine)
+                crate::lut::critical_cosines(&self.axes)
+                    .into_iter()
+                    .flat_map(|c| (0..ax.size).map(move |i| ax.coord_at(i, c)))
+                    .fold(f64::INFINITY, f64::min)
+            } else {
+                (0..ax.size)
+                    .map(|i| ax.coord(i))
+                    .fold(f64::INFINITY, f64::min)
+            };
             match ax.quantity {
                 Quantity::Cosine => {
                     let [dlo, dhi] = ax.warp.parameter_domain().unwrap_or([0.0, 1.0]);
