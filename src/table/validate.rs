@@ -423,11 +423,15 @@ impl TableSpec {
                 kind.name()
             ));
         }
-        if kind != TableKind::Dfg
-            && (self.dfg_layout.is_some() || self.cloth || self.cloth_alpha_min.is_some())
-        {
+        if kind != TableKind::Dfg && self.cloth_alpha_min.is_some() {
             return Err(format!(
-                "layout, cloth and cloth_alpha_min apply to dfg tables only, not {}",
+                "cloth_alpha_min applies to dfg tables with cloth only, not {}",
+                kind.name()
+            ));
+        }
+        if kind != TableKind::Dfg && (self.dfg_layout.is_some() || self.cloth) {
+            return Err(format!(
+                "layout and cloth apply to dfg tables only, not {}",
                 kind.name()
             ));
         }
