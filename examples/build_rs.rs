@@ -84,6 +84,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
         dfg_layout: Some(DfgLayout::Filament),
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F16,
         tolerance: 1e-7,

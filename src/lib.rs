@@ -23,7 +23,7 @@
 //!                size: 4, range: [0.0, 1.0], convention: Convention::Centers,
 //!                warp: Default::default(), clamp: None },
 //!     ],
-//!     dfg_layout: None, cloth: false, ltc_channels: None, storage: Storage::F32, tolerance: 1e-7,
+//!     dfg_layout: None, cloth: false, cloth_alpha_min: None, ltc_channels: None, storage: Storage::F32, tolerance: 1e-7,
 //! };
 //! let lut = bake(&spec).unwrap();
 //! let e = lut.lookup(&[0.5, 0.5])[0];

@@ -62,6 +62,9 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(e) = table.engine {
         v["engine"] = json!(e.name());
     }
+    if let Some(a) = spec.cloth_alpha_min {
+        v["cloth_alpha_min"] = json!(a);
+    }
     if let Some(c) = &spec.ltc_channels {
         v["ltc_channels"] = json!(c.iter().map(|c| c.name()).collect::<Vec<_>>());
     }
@@ -331,6 +334,12 @@ fn model_json(spec: &TableSpec) -> Value {
                 "visibility": crate::model::Masking::Ashikhmin.formula(),
                 "alpha": "the same alpha as the specular channels (roughness axis mapping)",
             });
+            if let Some(a) = spec.cloth_alpha_min {
+                v["cloth"]["alpha"] = json!(format!(
+                    "max(alpha, {a}): the specular channels' alpha (roughness axis mapping), floored at cloth_alpha_min"
+                ));
+                v["cloth"]["alpha_min"] = json!(a);
+            }
         }
     }
     v

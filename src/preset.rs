@@ -225,6 +225,9 @@ pub enum StoredChannel {
     Computed(usize),
     /// One minus the kind's channel `i` (`"1-E"`).
     OneMinus(usize),
+    /// The kind's channel `i` clamped to [0, 1] (`"clamp01-E"`), as an engine that clamps
+    /// what its generator writes (MaterialX's sheen albedo) stores it.
+    Clamp01(usize),
     /// The constant 0 (`"0"`).
     Zero,
     /// The constant 1 (`"1"`).
@@ -237,6 +240,7 @@ impl StoredChannel {
         match self {
             StoredChannel::Computed(i) => computed[i],
             StoredChannel::OneMinus(i) => 1.0 - computed[i],
+            StoredChannel::Clamp01(i) => computed[i].clamp(0.0, 1.0),
             StoredChannel::Zero => 0.0,
             StoredChannel::One => 1.0,
         }
@@ -248,6 +252,7 @@ impl StoredChannel {
         match self {
             StoredChannel::Computed(i) => computed[i],
             StoredChannel::OneMinus(i) => (1.0 - computed[i] as f64) as f32,
+            StoredChannel::Clamp01(i) => computed[i].clamp(0.0, 1.0),
             StoredChannel::Zero => 0.0,
             StoredChannel::One => 1.0,
         }
@@ -256,7 +261,9 @@ impl StoredChannel {
     /// The computed channel it is made from, if any.
     pub fn source(self) -> Option<usize> {
         match self {
-            StoredChannel::Computed(i) | StoredChannel::OneMinus(i) => Some(i),
+            StoredChannel::Computed(i) | StoredChannel::OneMinus(i) | StoredChannel::Clamp01(i) => {
+                Some(i)
+            }
             StoredChannel::Zero | StoredChannel::One => None,
         }
     }
@@ -266,6 +273,7 @@ impl StoredChannel {
         match self {
             StoredChannel::Computed(i) => kind_channels[i].name.clone(),
             StoredChannel::OneMinus(i) => format!("1-{}", kind_channels[i].name),
+            StoredChannel::Clamp01(i) => format!("clamp01-{}", kind_channels[i].name),
             StoredChannel::Zero => "0".into(),
             StoredChannel::One => "1".into(),
         }
@@ -276,6 +284,7 @@ impl StoredChannel {
         match self {
             StoredChannel::Computed(_) => "identity",
             StoredChannel::OneMinus(_) => "one minus",
+            StoredChannel::Clamp01(_) => "clamped to [0, 1]",
             StoredChannel::Zero => "constant 0",
             StoredChannel::One => "constant 1",
         }
@@ -287,10 +296,15 @@ impl StoredChannel {
         match entry {
             "0" => Some(StoredChannel::Zero),
             "1" => Some(StoredChannel::One),
-            _ => match entry.strip_prefix("1-") {
-                Some(n) => find(n).map(StoredChannel::OneMinus),
-                None => find(entry).map(StoredChannel::Computed),
-            },
+            _ => {
+                if let Some(n) = entry.strip_prefix("1-") {
+                    find(n).map(StoredChannel::OneMinus)
+                } else if let Some(n) = entry.strip_prefix("clamp01-") {
+                    find(n).map(StoredChannel::Clamp01)
+                } else {
+                    find(entry).map(StoredChannel::Computed)
+                }
+            }
         }
     }
 }
@@ -360,6 +374,11 @@ impl PresetTable {
                     }
                     StoredChannel::OneMinus(i) => format!(
                         "1 - {n}, one minus {n} = {}",
+                        kind[i].meaning,
+                        n = kind[i].name
+                    ),
+                    StoredChannel::Clamp01(i) => format!(
+                        "clamp({n}, 0, 1), where {n} = {}",
                         kind[i].meaning,
                         n = kind[i].name
                     ),
@@ -497,6 +516,8 @@ struct RawTable {
     layout: Option<DfgLayout>,
     #[serde(default)]
     cloth: Option<bool>,
+    #[serde(default)]
+    cloth_alpha_min: Option<f64>,
     #[serde(default)]
     storage: Option<Storage>,
     #[serde(default)]
@@ -747,6 +768,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             t.axes,
             t.layout,
             t.cloth,
+            t.cloth_alpha_min,
             t.storage,
             t.tolerance,
             t.ltc,
@@ -857,7 +879,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
                 let kind = crate::table::channels(&spec);
                 let names: Vec<&str> = kind.iter().map(|c| c.name.as_str()).collect();
                 let accepted = format!(
-                    "a channel of the {} table ({}), \"1-NAME\" for one minus it (\"1-{}\"), or the constants \"0\" and \"1\"",
+                    "a channel of the {} table ({}), \"1-NAME\" for one minus it (\"1-{}\"), \"clamp01-NAME\" for it clamped to [0, 1], or the constants \"0\" and \"1\"",
                     spec.kind.name(),
                     names.join(", "),
                     names[0]
@@ -1084,6 +1106,7 @@ fn table_spec(
     mut axes: RawAxes,
     layout: Option<DfgLayout>,
     cloth: Option<bool>,
+    cloth_alpha_min: Option<f64>,
     storage: Option<Storage>,
     tolerance: Option<f64>,
     ltc: Option<RawLtc>,
@@ -1284,6 +1307,7 @@ fn table_spec(
         axes: out_axes,
         dfg_layout: layout,
         cloth: cloth.unwrap_or(false),
+        cloth_alpha_min,
         ltc_channels,
         storage: storage.unwrap_or(Storage::F32),
         tolerance: tolerance.unwrap_or(DEFAULT_TOLERANCE),

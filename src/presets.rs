@@ -107,6 +107,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/heitz-ltc.json"),
     ),
     (
+        "materialx-albedo-table",
+        include_str!("../presets/engines/materialx-albedo-table.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
     ),

@@ -301,6 +301,9 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
         if get(&["model", "cloth"]).is_some() {
             t.insert("cloth".into(), json!(true));
         }
+        if let Some(a) = get(&["model", "cloth", "alpha_min"]) {
+            t.insert("cloth_alpha_min".into(), a.clone());
+        }
     }
     t.insert("storage".into(), need(&["storage", "texel_type"])?.clone());
     t.insert(

@@ -96,6 +96,7 @@ fn table(name: &str, kind: TableKind, model: ModelSpec, axes: Vec<Axis>) -> Tabl
         axes,
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: LIB_TOL,

@@ -47,6 +47,7 @@ fn g1_spec(cos: Axis) -> TableSpec {
         ],
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-9,
@@ -423,6 +424,7 @@ fn clamped_rows_are_computed_once_and_hold_the_clamped_value() {
             ],
             dfg_layout: (kind == TableKind::Dfg).then_some(brdfbake::table::DfgLayout::Karis),
             cloth: false,
+            cloth_alpha_min: None,
             storage: Storage::F32,
             tolerance: 1e-7,
             ..g1_spec(Axis::new(

@@ -283,6 +283,7 @@ fn refused_texel_falls_back_to_the_laws_integrator() {
         ],
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: tol,

@@ -44,6 +44,7 @@ fn spec(kind: TableKind, c: ClassicModel, axes: Vec<Axis>, tol: f64) -> TableSpe
         axes,
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: tol,

@@ -918,9 +918,9 @@ const FIXTURES: &[(&str, i32, &[&str])] = &[
         &["tables[0]", "layout \"karis\" or \"filament\""],
     ),
     (
-        "cloth-karis.json",
+        "cloth-alpha-min-without-cloth.json",
         INPUT,
-        &["tables[0]", "cloth", "\"filament\""],
+        &["tables[0]", "cloth_alpha_min", "\"cloth\": true"],
     ),
     (
         "layout-on-g1.json",

@@ -71,6 +71,7 @@ fn every_combination_bakes_or_is_rejected() {
                             axes: axes(kind, 3, q),
                             dfg_layout: layout,
                             cloth: layout.is_some(),
+                            cloth_alpha_min: None,
                             ltc_channels: None,
                             storage: Storage::F32,
                             tolerance: 1e-6,
@@ -216,6 +217,7 @@ fn edge_texels_are_finite_and_bounded() {
                         axes: edge_axes(kind, q),
                         dfg_layout: layout,
                         cloth: layout.is_some(),
+                        cloth_alpha_min: None,
                         ltc_channels: None,
                         storage: Storage::F32,
                         // only finiteness and bounds are checked here: a loose tolerance

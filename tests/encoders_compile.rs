@@ -63,6 +63,7 @@ fn spec(name: &str, kind: TableKind, axes: Vec<Axis>) -> TableSpec {
         axes,
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-6,

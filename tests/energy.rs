@@ -46,6 +46,7 @@ fn spec(kind: TableKind, masking: Masking, fresnel: Fresnel, axes: Vec<Axis>) ->
         axes,
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-7,

@@ -83,6 +83,7 @@ fn filament_dfg_table_matches_adaptive_at_every_texel() {
         axes: axes.clone(),
         dfg_layout: Some(DfgLayout::Filament),
         cloth: true,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: LIB_TOL,

@@ -211,6 +211,7 @@ fn table(
         ],
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-6,

@@ -222,6 +222,7 @@ fn norm_is_brdfbakes_albedo() {
         axes: axes.clone(),
         dfg_layout: None,
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-7,

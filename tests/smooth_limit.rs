@@ -59,6 +59,7 @@ fn spec(kind: TableKind, model: ModelSpec, axes: Vec<Axis>) -> TableSpec {
         axes,
         dfg_layout: (kind == TableKind::Dfg).then_some(DfgLayout::Karis),
         cloth: false,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: 1e-9,

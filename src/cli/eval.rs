@@ -302,6 +302,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         axes,
         dfg_layout: layout,
         cloth,
+        cloth_alpha_min: None,
         ltc_channels: None,
         storage: Storage::F32,
         tolerance: a.tolerance,

@@ -176,6 +176,11 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
             "layout and cloth apply to dfg tables only, not {kind}"
         ));
     }
+    if spec.cloth_alpha_min.is_some() {
+        return Err(format!(
+            "cloth_alpha_min applies to dfg tables with cloth only, not {kind}"
+        ));
+    }
     Ok(())
 }
 

@@ -115,6 +115,8 @@ pub(super) struct Ctx {
     /// The cloth channel's masking: Ashikhmin's for a dfg table, the model's for a Charlie
     /// albedo table.
     pub(super) sheen: Masking,
+    /// The cloth channel's floor on α (`cloth_alpha_min`).
+    pub(super) cloth_alpha_min: Option<f64>,
 }
 
 impl Ctx {
@@ -133,6 +135,15 @@ impl Ctx {
             } else {
                 spec.model.masking
             },
+            cloth_alpha_min: spec.cloth_alpha_min,
+        }
+    }
+
+    /// The cloth channel's Charlie α at a texel of roughness α: `max(α, cloth_alpha_min)`.
+    pub(super) fn cloth_alpha(&self, alpha: f64) -> f64 {
+        match self.cloth_alpha_min {
+            Some(m) => alpha.max(m),
+            None => alpha,
         }
     }
 
@@ -154,7 +165,7 @@ impl Ctx {
             r.evals += n;
         }
         if self.cloth {
-            let alpha = self.axes[1].alpha(j).expect("roughness axis");
+            let alpha = self.cloth_alpha(self.axes[1].alpha(j).expect("roughness axis"));
             let (v, e, n) = cloth_texel(self.sheen, view, alpha, self.tol);
             r.value.push(v);
             r.error.push(e);

@@ -250,8 +250,11 @@ struct Plan {
     source_row: Vec<usize>,
 }
 
-/// The rules of the module doc for a table of `nx` texel columns and the rows of `ay`.
-fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
+/// The rules of the module doc for a table of `nx` texel columns and the rows of `ay`;
+/// `cloth`: whether the table has the cloth channel, and its floor on α
+/// (`cloth_alpha_min`, 0 when unset). Rows below the floor hold the cloth value at the
+/// floor, a kink no line in α may cross: they go by rows (at the floor's α).
+fn plan(nx: usize, ay: &Axis, cloth: Option<f64>) -> Plan {
     let alpha = |j: usize| ay.alpha(j).expect("roughness axis");
     let mut source_row: Vec<usize> = (0..ay.size).collect();
     for j in 1..ay.size {
@@ -280,7 +283,7 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
         }
     }
     let pair_rows = (0..ay.size).filter(|&j| own(j) && !on_grid[j]).collect();
-    if !cloth {
+    let Some(floor) = cloth else {
         return Plan {
             pair_grids,
             pair_rows,
@@ -291,7 +294,8 @@ fn plan(nx: usize, ay: &Axis, cloth: bool) -> Plan {
             strip: None,
             source_row,
         };
-    }
+    };
+    let rows_where = |p: &dyn Fn(f64) -> bool| rows_where(&|a| a >= floor && p(a));
     let wide = |a: f64| (CLOTH_NARROW_BELOW_ALPHA..=1.0).contains(&a);
     let wide = RoughnessLine::new(ay, RoughnessVar::Sqrt, rows_where(&wide));
     let (cloth_grid, cloth_columns) = if nx >= GRID_MIN_COLUMNS {
@@ -479,7 +483,7 @@ fn pair_row(ctx: &Ctx, xs: &[f64], j: usize, stop: Stop) -> LineValues {
 /// a row the strip serves (`strip_end` = Some(k0)), above `xs[k0]` only, leaving the texels
 /// below 0 (the strip computes them).
 fn cloth_row(ctx: &Ctx, xs: &[f64], j: usize, strip_end: Option<usize>, stop: Stop) -> LineValues {
-    let alpha = ctx.axes[1].alpha(j).expect("roughness axis");
+    let alpha = ctx.cloth_alpha(ctx.axes[1].alpha(j).expect("roughness axis"));
     let at = |mu: f64, t: f64| {
         unless_stopped(stop, 1, || {
             cloth_sample(cloth_texel(ctx.sheen, &View::new(mu), alpha, t))
@@ -627,7 +631,11 @@ fn bake_with(
     let (ax, ay) = (&ctx.axes[0], &ctx.axes[1]);
     let (nx, ny) = (ax.size, ay.size);
     let tol = ctx.tol;
-    let mut p = plan(nx, ay, ctx.cloth);
+    let mut p = plan(
+        nx,
+        ay,
+        ctx.cloth.then_some(ctx.cloth_alpha_min.unwrap_or(0.0)),
+    );
     if !ctx.pair {
         // (a Charlie albedo table: the cloth channel alone)
         p.pair_grids.clear();
@@ -942,6 +950,7 @@ mod tests {
                 DfgLayout::Karis
             }),
             cloth,
+            cloth_alpha_min: None,
             ltc_channels: None,
             storage: Storage::F32,
             tolerance: tol,
@@ -957,7 +966,7 @@ mod tests {
         for (n, grids) in [(128, 1), (512, 2)] {
             let mut s = spec(n, [0.0, 1.0], n, true, 1e-7);
             s.axes[1].convention = Convention::Centers;
-            let p = plan(n, &s.axes[1], true);
+            let p = plan(n, &s.axes[1], Some(0.0));
             assert_eq!(p.pair_grids.len(), grids, "{n}²");
             let on_grids: usize = p.pair_grids.iter().map(|g| g.row.len()).sum();
             assert_eq!(on_grids + p.pair_rows.len(), n, "every row once");
@@ -1050,7 +1059,7 @@ mod tests {
     #[test]
     fn lines_match_texel_values() {
         let s = spec(128, [0.02, 1.0], 96, true, 1e-7);
-        let p = plan(128, &s.axes[1], true);
+        let p = plan(128, &s.axes[1], Some(0.0));
         assert_eq!(p.pair_grids.len(), 1);
         assert!(p.cloth_grid.is_some() && p.strip.is_none() && p.narrow_grid.is_none());
         assert_eq!(p.pair_grids[0].row[0], 14);
@@ -1064,7 +1073,7 @@ mod tests {
     #[test]
     fn narrow_lines_match_texel_values() {
         let s = spec(128, [0.02, 0.249], 70, true, 1e-7);
-        let p = plan(128, &s.axes[1], true);
+        let p = plan(128, &s.axes[1], Some(0.0));
         let first: Vec<usize> = p.pair_grids.iter().map(|g| g.row[0]).collect();
         assert_eq!(first, [13, 42]);
         assert!(p.strip.is_some() && p.narrow_grid.is_some() && !p.cloth_rows.is_empty());

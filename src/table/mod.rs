@@ -640,6 +640,9 @@ fn ch(name: &str, meaning: &str) -> Channel {
     }
 }
 
+/// The cloth channel of a dfg table (`cloth`; its α floored by `cloth_alpha_min` if set).
+const SHEEN_MEANING: &str = "int D_Charlie(alpha) V_Ashikhmin (n.l) dw_l: the sheen (cloth) directional albedo, may exceed 1 at grazing angles";
+
 /// The channels of a table, with their meaning.
 pub fn channels(spec: &TableSpec) -> Vec<Channel> {
     match spec.kind {
@@ -656,25 +659,26 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::Albedo => vec![ch("E", "E(mu) = int f(v,l) (n.l) dw_l over the hemisphere")],
         TableKind::AlbedoAvg => vec![ch("E_avg", "E_avg = 2 int_0^1 E(mu) mu dmu")],
         TableKind::Dfg => match spec.dfg_layout {
-            Some(DfgLayout::Karis) => vec![
-                ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
-                ch("B", "B = int Fc f cos dw_l"),
-            ],
-            Some(DfgLayout::KarisF82) => vec![
-                ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
-                ch("B", "B = int Fc f cos dw_l"),
-                ch("F82", "F82 = int (v.h)(1 - v.h)^6 f cos dw_l: the F82-tint term; E = F0*A + B - b*F82"),
-            ],
+            Some(l @ (DfgLayout::Karis | DfgLayout::KarisF82)) => {
+                let mut v = vec![
+                    ch("A", "A = int (1 - Fc) f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = F0*A + B"),
+                    ch("B", "B = int Fc f cos dw_l"),
+                ];
+                if l == DfgLayout::KarisF82 {
+                    v.push(ch("F82", "F82 = int (v.h)(1 - v.h)^6 f cos dw_l: the F82-tint term; E = F0*A + B - b*F82"));
+                }
+                if spec.cloth {
+                    v.push(ch("sheen", SHEEN_MEANING));
+                }
+                v
+            }
             _ => {
                 let mut v = vec![
                     ch("R", "int Fc f cos dw_l, Fc = (1 - v.h)^5, f with F = 1; E = mix(R, G, F0) = (1 - F0) R + F0 G"),
                     ch("G", "int f cos dw_l (F = 1): the single-scattering albedo; multiscatter compensation 1 + F0 (1/G - 1)"),
                 ];
                 if spec.cloth {
-                    v.push(ch(
-                        "B",
-                        "int D_Charlie(alpha) V_Ashikhmin (n.l) dw_l: the sheen (cloth) directional albedo, may exceed 1 at grazing angles",
-                    ));
+                    v.push(ch("B", SHEEN_MEANING));
                 }
                 v
             }

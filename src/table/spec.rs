@@ -370,8 +370,11 @@ pub struct TableSpec {
     /// Axes in the order of [`TableKind::axis_names`].
     pub axes: Vec<Axis>,
     pub dfg_layout: Option<DfgLayout>,
-    /// Filament layout only: add the cloth channel.
+    /// Add the cloth channel (dfg tables): ∫ D_Charlie(α)·V_Ashikhmin·cos.
     pub cloth: bool,
+    /// The cloth channel's Charlie parameter is `max(α, cloth_alpha_min)` (MaterialX's
+    /// `max(r, 0.005)`); the split-sum channels keep α. `None`: α itself.
+    pub cloth_alpha_min: Option<f64>,
     /// The channels of an `ltc` table (the preset's `ltc.channels`, or
     /// [`LtcChannel::DEFAULT`]); `None` for every other kind.
     pub ltc_channels: Option<Vec<LtcChannel>>,

@@ -8,6 +8,7 @@ use super::spec::{
     MIN_TOLERANCE,
 };
 use crate::lut::{Convention, Quantity, Warp};
+use crate::model::ndf::MIN_ALPHA;
 use crate::model::{Fresnel, Masking, Ndf, NdfKind, RoughnessQuantity};
 
 impl TableSpec {
@@ -403,8 +404,15 @@ impl TableSpec {
                 if self.dfg_layout.is_none() {
                     return Err("a dfg table needs layout \"karis\" or \"filament\"".into());
                 }
-                if self.cloth && self.dfg_layout != Some(DfgLayout::Filament) {
-                    return Err("cloth is only available with layout \"filament\"".into());
+                if let Some(a) = self.cloth_alpha_min {
+                    if !self.cloth {
+                        return Err("cloth_alpha_min needs \"cloth\": true (it floors the cloth channel's alpha)".into());
+                    }
+                    if !(MIN_ALPHA..=1.0).contains(&a) {
+                        return Err(format!(
+                            "cloth_alpha_min must be in [{MIN_ALPHA:e}, 1] (the cloth channel's Charlie alpha is max(alpha, cloth_alpha_min)), got {a}"
+                        ));
+                    }
                 }
                 if self.dfg_layout == Some(DfgLayout::KarisF82)
                     && !(m.ndf == Some(NdfKind::Ggx) && m.masking.is_smith())
@@ -431,6 +439,12 @@ impl TableSpec {
         if kind != TableKind::Ltc && self.ltc_channels.is_some() && kind != TableKind::LtcSphere {
             return Err(format!(
                 "ltc.channels applies to ltc tables only, not {}",
+                kind.name()
+            ));
+        }
+        if kind != TableKind::Dfg && self.cloth_alpha_min.is_some() {
+            return Err(format!(
+                "cloth_alpha_min applies to dfg tables with cloth only, not {}",
                 kind.name()
             ));
         }
