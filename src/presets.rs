@@ -71,6 +71,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/cycles-glass-eavg.json"),
     ),
     (
+        "cycles-ggx-gen-schlick-s",
+        include_str!("../presets/engines/cycles-ggx-gen-schlick-s.json"),
+    ),
+    (
+        "cycles-ggx-gen-schlick-ior-s",
+        include_str!("../presets/engines/cycles-ggx-gen-schlick-ior-s.json"),
+    ),
+    (
         "eevee-bsdf-split-sum-ggx",
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),
