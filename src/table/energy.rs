@@ -206,7 +206,9 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
         TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
             Some(super::dielectric::fibre_fn(spec))
         }
-        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => Some(super::schlick_weight::fibre_fn(spec)),
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+            Some(super::schlick_weight::fibre_fn(spec))
+        }
         TableKind::AlbedoFresnel => fresnel_fibre_fn(spec),
         _ => None,
     }

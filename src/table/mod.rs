@@ -280,7 +280,9 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
             }
             TableKind::DielectricAlbedo => dielectric::texel_fn(spec),
             TableKind::DielectricAlbedoAvg => dielectric_average::texel_fn(spec),
-            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => schlick_weight::texel_fn(spec),
+            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+                schlick_weight::texel_fn(spec)
+            }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
             TableKind::Ltc | TableKind::LtcSphere => unreachable!("baked by bake_ltc above"),
         };

@@ -151,7 +151,9 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
         // R + T = F + (1 − F) for μ > 0 (validation keeps μ > 0)
         TableKind::DielectricAlbedo => TexelResult::exact(vec![1.0]),
         TableKind::DielectricAlbedoAvg => TexelResult::exact(vec![1.0]),
-        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => super::schlick_weight::smooth_texel(spec, idx),
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+            super::schlick_weight::smooth_texel(spec, idx)
+        }
         TableKind::Dfg => {
             let mu = mu();
             let g = mirror_g(m.masking, mu);

@@ -406,7 +406,9 @@ impl TableSpec {
             TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
                 super::dielectric::validate(self)?
             }
-            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => super::schlick_weight::validate(self)?,
+            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+                super::schlick_weight::validate(self)?
+            }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
                 unreachable!("validated above")
             }
