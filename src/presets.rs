@@ -79,6 +79,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/cycles-ggx-gen-schlick-ior-s.json"),
     ),
     (
+        "cycles-glass-inv-e",
+        include_str!("../presets/engines/cycles-glass-inv-e.json"),
+    ),
+    (
+        "cycles-glass-inv-eavg",
+        include_str!("../presets/engines/cycles-glass-inv-eavg.json"),
+    ),
+    (
         "eevee-bsdf-split-sum-ggx",
         include_str!("../presets/engines/eevee-bsdf-split-sum-ggx.json"),
     ),

@@ -92,10 +92,12 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
     let kind = spec.kind.name();
     match m.ndf {
         Some(NdfKind::Ggx) => {}
-        other => return Err(format!(
+        other => {
+            return Err(format!(
             "model.ndf must be ggx for a {kind} table (the visible normals are GGX's), got {:?}",
             other.map_or("none", |n| n.name())
-        )),
+        ))
+        }
     }
     if SmithForm::of(m.masking).is_none() {
         return Err(format!(
