@@ -230,6 +230,30 @@ pub fn conductor(c: f64, eta: f64, k: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// The kink of the normalized dielectric weight: F(c*) = F0 to rounding, F > F0 just
+    /// below c* and F < F0 just above (so the weight is clamped to 0 there); none at or
+    /// below η = 3.3 (F ≥ F0 throughout, checked on a grid), one from η = 4.6 on.
+    #[test]
+    fn normalized_dielectric_kink_is_where_f_falls_below_f0() {
+        let f0 = |eta: f64| ((eta - 1.0) / (eta + 1.0)).powi(2);
+        for eta in [0.5, 1.0, 1.5, 2.6, 3.3] {
+            assert_eq!(normalized_dielectric_kink(eta), None, "eta {eta}");
+            if eta > 1.0 {
+                assert!((1..1000).all(|i| dielectric(i as f64 / 1000.0, eta) >= f0(eta) - 1e-12));
+            }
+        }
+        for eta in [4.556, 7.036, 14.52, 99.5] {
+            let c = normalized_dielectric_kink(eta).expect("a kink");
+            assert!(
+                (dielectric(c, eta) - f0(eta)).abs() < 1e-12,
+                "eta {eta}: c* = {c}"
+            );
+            assert!(dielectric(c * (1.0 - 1e-3), eta) > f0(eta), "eta {eta}");
+            assert!(dielectric(c * (1.0 + 1e-3), eta) < f0(eta), "eta {eta}");
+            assert_eq!(normalized_dielectric_weight(c * (1.0 + 1e-3), eta), 0.0);
+        }
+    }
+
     /// At normal incidence both exact forms reduce to ((η−1)² + k²)/((η+1)² + k²); a
     /// conductor with k = 0 is a dielectric. Rounding-level tolerances.
     #[test]
