@@ -335,8 +335,13 @@ fn reference_texel(spec: &TableSpec, lut: &Lut, idx: [usize; 3]) -> (Vec<Option<
     let alpha_at = |k: usize| lut.axes[k].alpha(idx[k]).expect("roughness axis");
     let x = |k: usize| lut.axes[k].coord(idx[k]);
     match spec.kind {
-        // (the LTC tables are measured by their lit error: the `ltc` rows)
-        TableKind::Ltc | TableKind::LtcSphere => (vec![None; lut.channels.len()], 0.0),
+        // (the LTC tables are measured by their lit error: the `ltc` rows; the schlick-weight
+        // kinds have no reference here yet: tests/cycles_gen_schlick.rs checks them against
+        // Cycles' tables)
+        TableKind::Ltc
+        | TableKind::LtcSphere
+        | TableKind::SchlickWeightVndf
+        | TableKind::SchlickWeightAlbedo => (vec![None; lut.channels.len()], 0.0),
         TableKind::Ndf => {
             let r = RefModel::new(m.ndf.expect("ndf"), alpha_at(1), Masking::None);
             let c = x(0);

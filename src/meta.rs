@@ -241,7 +241,7 @@ pub(crate) fn axis_json(k: usize, a: &Axis) -> Value {
     }
     if let Quantity::Fresnel(q) = a.quantity {
         v["parameter_mapping"] = json!(q.mapping());
-        v["parameter"] = json!(if q.is_f0() { "F0" } else { "eta" });
+        v["parameter"] = json!(q.parameter_name());
         v["parameter_values"] = json!((0..a.size)
             .map(|i| a.fresnel_parameter(i).unwrap_or(f64::NAN))
             .collect::<Vec<_>>());
@@ -269,6 +269,7 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
         TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
             crate::table::dielectric::reconstruction(spec)
         }
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => crate::table::schlick_weight::reconstruction(spec),
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::reconstruction(spec)
         }

@@ -71,6 +71,22 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/cycles-glass-eavg.json"),
     ),
     (
+        "cycles-ggx-gen-schlick-s",
+        include_str!("../presets/engines/cycles-ggx-gen-schlick-s.json"),
+    ),
+    (
+        "cycles-ggx-gen-schlick-ior-s",
+        include_str!("../presets/engines/cycles-ggx-gen-schlick-ior-s.json"),
+    ),
+    (
+        "cycles-glass-inv-e",
+        include_str!("../presets/engines/cycles-glass-inv-e.json"),
+    ),
+    (
+        "cycles-glass-inv-eavg",
+        include_str!("../presets/engines/cycles-glass-inv-eavg.json"),
+    ),
+    (
         "eevee-ltc-ggx",
         include_str!("../presets/engines/eevee-ltc-ggx.json"),
     ),

@@ -1069,6 +1069,9 @@ pub fn exact_at(
         }
         TableKind::DielectricAlbedo => crate::table::dielectric::texel_fn(&spec),
         TableKind::DielectricAlbedoAvg => crate::table::dielectric_average::texel_fn(&spec),
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+            crate::table::schlick_weight::texel_fn(&spec)
+        }
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::texel_fn(&spec)
         }

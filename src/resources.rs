@@ -238,6 +238,9 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
         }
         K::DielectricAlbedoAvg => (100_000.0, 0.0),
+        // schlick-weight-*: measured 1,165 (exponent axis) and 1,186 (eta axis) per texel on
+        // the cycles-ggx-gen-schlick-* presets (2026-12-02, fibres of 8 slices)
+        K::SchlickWeightVndf | K::SchlickWeightAlbedo => (1_200.0, 0.0),
         // the laws' adaptive integrator over the full azimuth: ~10⁴ per albedo; the
         // anisotropic kind takes ~20 albedos per texel (azimuth average + two azimuths).
         // Models with the 1D fast path (src/kernels/classic_lobes.rs) measured on the

@@ -240,7 +240,15 @@ fn edge_texels_are_finite_and_bounded() {
                         let ch = &lut.channels[i % nc].name;
                         assert!(v.is_finite() && *v >= 0.0, "{what}: texel {i} {ch} = {v}");
                         let bounded_by_1 =
-                            matches!(kind, TableKind::G1 | TableKind::G2 | TableKind::Vgroove)
+                            // (a schlick-weight table is a mean of s in [0, 1])
+                            matches!(
+                                kind,
+                                TableKind::G1
+                                    | TableKind::G2
+                                    | TableKind::Vgroove
+                                    | TableKind::SchlickWeightVndf
+                                    | TableKind::SchlickWeightAlbedo
+                            )
                                 || (energy_bounded
                                     && (matches!(kind, TableKind::Albedo | TableKind::AlbedoAvg)
                                         || (kind == TableKind::Dfg && ch != "B")));

@@ -88,3 +88,60 @@ fn cycles_glass_presets_reproduce_the_shipped_tables() {
         );
     }
 }
+
+/// `cycles-glass-inv-e` and `cycles-glass-inv-eavg` (η < 1: the view inside the denser
+/// medium) bake the physical integral, which Cycles' `glass_inv_E`/`glass_inv_Eavg` are not:
+/// Cycles' sampler keeps refracted directions that leave on the view's side (its
+/// `dot(Ng, wo) < 0` check is commented out), terms ≥ 0 that Walter's model drops, so beyond
+/// slice/row 0 (Cycles' specular branch, asserted to be 1 as for glass_E) ours ≤ Cycles + the
+/// bound of `cycles_glass_presets_reproduce_the_shipped_tables` everywhere, with equality
+/// within that bound in the last slice (η = 1/99.5: total internal reflection for all but
+/// v·h > 0.99995, nothing refracted). How much Cycles adds is printed, and must exceed the
+/// bound somewhere (else the tables would not be "stale" and this test would say nothing):
+/// that is the negative control.
+#[test]
+fn cycles_glass_inv_presets_bound_the_shipped_tables() {
+    for (preset, table, slice, sigma) in [
+        ("cycles-glass-inv-e", "ggx_glass_inv_E", 256, 1.73e-4),
+        ("cycles-glass-inv-eavg", "ggx_glass_inv_Eavg", 16, 1.41e-4),
+    ] {
+        let c = cycles(table);
+        let ours = stored(preset);
+        assert_eq!(c.len(), ours.len(), "{preset}");
+        assert!(
+            c[..slice].iter().all(|&v| v >= 0.99998),
+            "{table}: slice 0 is Cycles' specular branch"
+        );
+        let bound = 5e-7 + 5.0 * sigma + 1e-6 + 6e-8;
+        let (over, i) = (slice..c.len())
+            .map(|i| (ours[i] - c[i], i))
+            .fold((f64::NEG_INFINITY, 0), |m, d| if d.0 > m.0 { d } else { m });
+        let (extra, j) = (slice..c.len())
+            .map(|i| (c[i] - ours[i], i))
+            .fold((f64::NEG_INFINITY, 0), |m, d| if d.0 > m.0 { d } else { m });
+        let n = c.len() / slice;
+        let mean_extra =
+            (slice..c.len()).map(|i| c[i] - ours[i]).sum::<f64>() / (c.len() - slice) as f64;
+        eprintln!(
+            "{preset}: max (ours - Cycles) = {over:.3e} at {i}; Cycles adds up to {extra:.3e} (at {j}), {mean_extra:.3e} on average (bound {bound:.3e})"
+        );
+        assert!(
+            over <= bound,
+            "{preset} texel {i}: ours {} over Cycles {}",
+            ours[i],
+            c[i]
+        );
+        assert!(extra > 10.0 * bound, "{preset}: Cycles adds only {extra}");
+        let last = (n - 1) * slice;
+        let (d, k) = (last..c.len())
+            .map(|i| ((c[i] - ours[i]).abs(), i))
+            .fold((0.0, 0), |m, d| if d.0 > m.0 { d } else { m });
+        eprintln!("{preset}: last slice max |diff| = {d:.3e} at {k}");
+        assert!(
+            d <= bound,
+            "{preset} texel {k}: ours {} vs Cycles {}",
+            ours[k],
+            c[k]
+        );
+    }
+}

@@ -147,6 +147,9 @@ fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result
             s.commit,
             s.licence
         );
+        if let Some(n) = &s.notes {
+            outln!("  notes: {n}");
+        }
     }
     outln!(
         "  exact: brdfbake at tolerance {} (largest error estimate {})",

@@ -1,6 +1,6 @@
 //! Integrals over the micro-normals h of a GGX surface seen from a view v: the nested rule
-//! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`) and of the `karis-f82`
-//! dfg channel, whose integrands are all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
+//! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`), of the `schlick-weight`
+//! kind and of the `karis-f82` dfg channel, whose integrands are all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
 //! with kinks only where this rule puts panel boundaries ([`integrate_micro_normals`]).
 //!
 //! The integrals run over the micro-normal h in the hemisphere about n, with v in the
@@ -124,7 +124,7 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     }
 }
 
-/// Most breakpoints of one integral: in u, 0, the end, the reflected horizon, one spare
+/// Most breakpoints of one integral: in u, 0, the end, the reflected horizon, the view peak
 /// and 3 per η (two critical-angle crossings, the transmitted horizon); in φ, 0, π, π/2 and
 /// 4 per η ([`phi_breaks`]); for up to [`MAX_ETAS`] indices.
 const MAX_BREAKS: usize = 4 + 4 * MAX_ETAS;
@@ -248,6 +248,15 @@ pub fn phi_breaks(eta: f64, mu: f64) -> Vec<(f64, bool)> {
         return out;
     }
     let c = (1.0 - eta * eta).sqrt();
+    out.extend(cone_phi_breaks(c, mu, sin_v));
+    out
+}
+
+/// The azimuths in (0, π), other than π/2, where an inner integral whose integrand has a
+/// kink on the cone v·h = `c` about the view (the critical cone of η < 1, c = √(1 − η²), or
+/// a [`Rule::cones`] cosine) has a kink, with whether it is a square-root kink.
+fn cone_phi_breaks(c: f64, mu: f64, sin_v: f64) -> Vec<(f64, bool)> {
+    let mut out = Vec::new();
     let mut push = |p: f64, singular: bool| {
         if p > 0.0 && p < PI && (p - FRAC_PI_2).abs() > 1e-12 {
             out.push((p, singular));
@@ -269,6 +278,20 @@ pub fn phi_breaks(eta: f64, mu: f64) -> Vec<(f64, bool)> {
         push((c / sin_v).acos(), false);
     }
     out
+}
+
+/// tan θh of the micro-normals at azimuth φ (`cos_phi`) on the cone v·h = `c` about a view
+/// with n·v = `mu` (θh in (0, π/2)): θh = ψ ± arccos(c/A), tan ψ = sin θv cos φ/μ,
+/// A = √(μ² + sin²θv cos²φ) (h = (sin θh cos φ, sin θh sin φ, cos θh) has
+/// v·h = A cos(θh − ψ)).
+fn cone_tan_theta_h(c: f64, mu: f64, sin_v: f64, cos_phi: f64) -> [Option<f64>; 2] {
+    let a = (mu * mu + sin_v * sin_v * cos_phi * cos_phi).sqrt();
+    if c >= a {
+        return [None, None];
+    }
+    let psi = (sin_v * cos_phi).atan2(mu);
+    let d = (c / a).acos();
+    [psi - d, psi + d].map(|th| (th > 0.0 && th < FRAC_PI_2).then(|| th.tan()))
 }
 
 /// The end of the warped inner variable u = asinh(tan θh/α) where the range is not cut by
@@ -296,15 +319,24 @@ pub struct Rule<'a> {
     /// The relative indices whose kinks (η < 1: the critical angle, the transmitted
     /// direction's horizon) the integrand has (at most [`MAX_ETAS`]).
     pub etas: &'a [f64],
+    /// Cosines c where the integrand has a (plain) kink on the cone v·h = c about the view
+    /// (at most [`MAX_ETAS`] − `etas.len()`): the clamp of the normalized dielectric weight
+    /// at F(c; η) = F0 for η ≳ 3.7 (`schlick-weight-*`).
+    pub cones: &'a [f64],
+    /// Whether the integrand has a non-analytic factor of 1 − v·h (panel ends where v·h
+    /// peaks along each azimuth).
+    pub view_peak: bool,
     /// The error estimate of every panel's nested Clenshaw–Curtis rule.
     pub estimator: Estimator,
 }
 
 impl<'a> Rule<'a> {
-    /// The kinks of `etas`, the standard estimate (`dielectric-btdf`).
+    /// The kinks of `etas`, no view peak, the standard estimate (`dielectric-btdf`).
     pub fn standard(etas: &'a [f64]) -> Rule<'a> {
         Rule {
             etas,
+            cones: &[],
+            view_peak: false,
             estimator: Estimator::Standard,
         }
     }
@@ -315,7 +347,12 @@ impl<'a> Rule<'a> {
 /// docs. `g` is the integrand per unit solid angle of h (given n·h, sin²θh and v·h); it may
 /// have kinks only where this rule puts panel boundaries: the reflected direction's horizon
 /// and, for every relative index in `etas` below 1, the critical angle and the transmitted
-/// direction's horizon (indices ≥ 1 add none). `evals` counts the inner nodes.
+/// direction's horizon (indices ≥ 1 add none). With `view_peak`, also where v·h peaks along
+/// each line of azimuth (θh = ψ, tan ψ = tan θv cos φ, for cos φ > 0), as a square-root end
+/// (the panels beside it are integrated in t, u = end ± (b − a) t²): for integrands with a
+/// non-analytic factor of 1 − v·h, such as the generalized Schlick weight (1 − v·h)^e of a
+/// non-integer e, whose singular point h = v lies on the line φ = 0. `evals` counts the
+/// inner nodes.
 pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     ndf: &Ndf,
     rule: Rule,
@@ -323,7 +360,18 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     tol: f64,
     g: G,
 ) -> Estimate<N> {
-    let Rule { etas, estimator } = rule;
+    let Rule {
+        etas,
+        cones,
+        view_peak,
+        estimator,
+    } = rule;
+    assert!(
+        etas.len() + cones.len() <= MAX_ETAS,
+        "{} indices and {} cones",
+        etas.len(),
+        cones.len()
+    );
     let mu = mu.min(1.0);
     let sin_v = (1.0 - mu * mu).max(0.0).sqrt();
     let tan_v = sin_v / mu;
@@ -356,6 +404,9 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
             }
         };
         inside(to_u(tan_theta_h_max(tan_v, cp)), false);
+        if view_peak && cp > 0.0 {
+            inside(to_u(tan_v * cp), true);
+        }
         for &eta in etas.iter().filter(|&&eta| eta < 1.0) {
             let c = (1.0 - eta * eta).sqrt();
             let a = (mu * mu + sin_v * sin_v * cp * cp).sqrt();
@@ -370,6 +421,11 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
             }
             // the transmitted direction's horizon (a kink: T's G1 vanishes linearly there)
             if let Some(t) = transmitted_horizon(eta, mu, sin_v, cp, sp) {
+                inside(to_u(t), false);
+            }
+        }
+        for &c in cones {
+            for t in cone_tan_theta_h(c, mu, sin_v, cp).into_iter().flatten() {
                 inside(to_u(t), false);
             }
         }
@@ -417,6 +473,11 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     for &eta in etas {
         // (π/2, every index's first break, once)
         for (x, singular) in phi_breaks(eta, mu).into_iter().skip(1) {
+            breaks.push(x, singular);
+        }
+    }
+    for &c in cones {
+        for (x, singular) in cone_phi_breaks(c, mu, sin_v) {
             breaks.push(x, singular);
         }
     }

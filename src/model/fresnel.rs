@@ -109,6 +109,65 @@ pub fn f82_tint_weight(c: f64) -> f64 {
     c * m3 * m3
 }
 
+/// The generalized Schlick weight `(1 − c)^e` of F = F0 + (F90 − F0)(1 − c)^e (Cycles'
+/// generalized Schlick Fresnel with a non-negative exponent; e = 5 is Schlick 1994; 1 at
+/// e = 0).
+#[inline]
+pub fn generalized_schlick_weight(c: f64, e: f64) -> f64 {
+    (1.0 - c).clamp(0.0, 1.0).powf(e)
+}
+
+/// The exact dielectric Fresnel reflectance normalized to Schlick's form,
+/// `saturate((F(c; η) − F0)/(1 − F0))` with F0 = ((η − 1)/(η + 1))², so that
+/// F0 + (1 − F0)·w = F(c; η) (Cycles' generalized Schlick Fresnel with a negative exponent
+/// remaps the real Fresnel this way, `bsdf_microfacet.h`, and its `gen_schlick_ior_s` table
+/// averages w). 0 at η = 1 for c > 0, 1 under total internal reflection.
+#[inline]
+pub fn normalized_dielectric_weight(c: f64, eta: f64) -> f64 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    let f0 = r * r;
+    ((dielectric(c, eta) - f0) / (1.0 - f0)).clamp(0.0, 1.0)
+}
+
+/// Where [`normalized_dielectric_weight`] has a kink inside (0, 1): the cosine c* at which
+/// F(c; η) falls below F0 (for η above ≈ 3.7 the unpolarized F dips below its normal value
+/// between c* and 1, around Brewster's angle, and the weight is clamped to 0 there), or
+/// `None` (η < 1: total internal reflection keeps F ≥ F0; η ≤ 3.7: F ≥ F0 throughout). Found
+/// by scanning c geometrically from 1e-9 to 1 − 1e-6 for the first c with
+/// F − F0 < −1e-12 (below that a dip is rounding; the kink it would make is below any
+/// tolerance) and bisecting the bracket to rounding.
+pub fn normalized_dielectric_kink(eta: f64) -> Option<f64> {
+    if eta <= 1.0 {
+        return None;
+    }
+    let r = (eta - 1.0) / (eta + 1.0);
+    let f0 = r * r;
+    let g = |c: f64| dielectric(c, eta) - f0;
+    const STEPS: usize = 2000;
+    let (lo_exp, hi) = (-9.0f64, 1.0 - 1e-6);
+    let mut prev = 0.0;
+    for k in 0..=STEPS {
+        let c = (10f64.powf(lo_exp * (1.0 - k as f64 / STEPS as f64))).min(hi);
+        if g(c) < -1e-12 {
+            let (mut a, mut b) = (prev, c);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if m <= a || m >= b {
+                    break;
+                }
+                if g(m) < 0.0 {
+                    b = m;
+                } else {
+                    a = m;
+                }
+            }
+            return Some(0.5 * (a + b));
+        }
+        prev = c;
+    }
+    None
+}
+
 /// Unpolarized dielectric Fresnel reflectance.
 #[inline]
 pub fn dielectric(c: f64, eta: f64) -> f64 {
@@ -170,6 +229,30 @@ pub fn conductor(c: f64, eta: f64, k: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The kink of the normalized dielectric weight: F(c*) = F0 to rounding, F > F0 just
+    /// below c* and F < F0 just above (so the weight is clamped to 0 there); none at or
+    /// below η = 3.3 (F ≥ F0 throughout, checked on a grid), one from η = 4.6 on.
+    #[test]
+    fn normalized_dielectric_kink_is_where_f_falls_below_f0() {
+        let f0 = |eta: f64| ((eta - 1.0) / (eta + 1.0)).powi(2);
+        for eta in [0.5, 1.0, 1.5, 2.6, 3.3] {
+            assert_eq!(normalized_dielectric_kink(eta), None, "eta {eta}");
+            if eta > 1.0 {
+                assert!((1..1000).all(|i| dielectric(i as f64 / 1000.0, eta) >= f0(eta) - 1e-12));
+            }
+        }
+        for eta in [4.556, 7.036, 14.52, 99.5] {
+            let c = normalized_dielectric_kink(eta).expect("a kink");
+            assert!(
+                (dielectric(c, eta) - f0(eta)).abs() < 1e-12,
+                "eta {eta}: c* = {c}"
+            );
+            assert!(dielectric(c * (1.0 - 1e-3), eta) > f0(eta), "eta {eta}");
+            assert!(dielectric(c * (1.0 + 1e-3), eta) < f0(eta), "eta {eta}");
+            assert_eq!(normalized_dielectric_weight(c * (1.0 + 1e-3), eta), 0.0);
+        }
+    }
 
     /// At normal incidence both exact forms reduce to ((η−1)² + k²)/((η+1)² + k²); a
     /// conductor with k = 0 is a dielectric. Rounding-level tolerances.

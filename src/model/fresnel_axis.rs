@@ -8,12 +8,20 @@
 //! Its mirror image, `inverse-eta-reflectance` x = (1 − η)/(1 + η), is the same axis seen
 //! from the other side: x ≥ 0 is η ≤ 1 (Cycles' `glass_inv_*` tables, which are indexed by
 //! the reflectance of 1/η).
+//!
+//! The generalized Schlick Fresnel F = F0 + (F90 − F0)(1 − v·h)^e (Cycles) has a third kind of
+//! parameter, its exponent e: `schlick-exponent` (x = e) and `schlick-exponent-ratio`
+//! (x = 5/(5 + e), Cycles' axis: x = 1/2 is Schlick's 5, x = 1 is e = 0); only the
+//! `schlick-weight` kind takes them.
 
 /// The smallest relative index a Fresnel axis accepts (Cycles' `glass_inv_*` tables reach
 /// η = 1/99.5).
 pub const MIN_ETA: f64 = 1e-4;
 /// The largest relative index a Fresnel axis accepts.
 pub const MAX_ETA: f64 = 100.0;
+/// The largest generalized Schlick exponent a Fresnel axis accepts (Cycles' table reaches
+/// 5(1 − 1e-4)/1e-4 ≈ 5·10⁴).
+pub const MAX_EXPONENT: f64 = 1e6;
 
 /// What a `fresnel` axis coordinate is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -30,15 +38,22 @@ pub enum FresnelQuantity {
     /// t = (1 − η)/(1 + η) ∈ (−1, 1), η = (1 − t)/(1 + t): the reflectance of 1/η (exact
     /// Fresnel; t ≥ 0 is η ≤ 1, the view inside the denser medium).
     InverseEtaReflectance,
+    /// The exponent e ≥ 0 of the generalized Schlick weight (1 − v·h)^e.
+    SchlickExponent,
+    /// x = 5/(5 + e) ∈ (0, 1], e = 5(1 − x)/x: the generalized Schlick exponent as Cycles
+    /// spaces it (x = 1/2: e = 5).
+    SchlickExponentRatio,
 }
 
 impl FresnelQuantity {
-    pub const ALL: [FresnelQuantity; 5] = [
+    pub const ALL: [FresnelQuantity; 7] = [
         FresnelQuantity::F0,
         FresnelQuantity::SqrtF0,
         FresnelQuantity::Eta,
         FresnelQuantity::EtaReflectance,
         FresnelQuantity::InverseEtaReflectance,
+        FresnelQuantity::SchlickExponent,
+        FresnelQuantity::SchlickExponentRatio,
     ];
 
     pub fn name(self) -> &'static str {
@@ -48,6 +63,8 @@ impl FresnelQuantity {
             FresnelQuantity::Eta => "eta",
             FresnelQuantity::EtaReflectance => "eta-reflectance",
             FresnelQuantity::InverseEtaReflectance => "inverse-eta-reflectance",
+            FresnelQuantity::SchlickExponent => "schlick-exponent",
+            FresnelQuantity::SchlickExponentRatio => "schlick-exponent-ratio",
         }
     }
 
@@ -71,6 +88,25 @@ impl FresnelQuantity {
         )
     }
 
+    /// Whether the coordinate gives the exponent of the generalized Schlick weight.
+    pub fn is_exponent(self) -> bool {
+        matches!(
+            self,
+            FresnelQuantity::SchlickExponent | FresnelQuantity::SchlickExponentRatio
+        )
+    }
+
+    /// What the coordinate gives: `F0`, `eta` or `exponent`.
+    pub fn parameter_name(self) -> &'static str {
+        if self.is_f0() {
+            "F0"
+        } else if self.is_eta() {
+            "eta"
+        } else {
+            "exponent"
+        }
+    }
+
     pub fn mapping(self) -> &'static str {
         match self {
             FresnelQuantity::F0 => "F0 = coordinate (Schlick)",
@@ -82,10 +118,16 @@ impl FresnelQuantity {
             FresnelQuantity::InverseEtaReflectance => {
                 "eta = (1 - coordinate)/(1 + coordinate), i.e. coordinate = (1 - eta)/(1 + eta) = (1/eta - 1)/(1/eta + 1) (exact Fresnel)"
             }
+            FresnelQuantity::SchlickExponent => {
+                "exponent e = coordinate of the generalized Schlick weight (1 - v.h)^e"
+            }
+            FresnelQuantity::SchlickExponentRatio => {
+                "exponent e = 5 (1 - coordinate)/coordinate, i.e. coordinate = 5/(5 + e) (0.5: e = 5), of the generalized Schlick weight (1 - v.h)^e"
+            }
         }
     }
 
-    /// The parameter (F0 or η) at a coordinate; NaN/∞ outside the domain (validation
+    /// The parameter (F0, η or exponent) at a coordinate; NaN/∞ outside the domain (validation
     /// rejects those texels).
     pub fn to_parameter(self, x: f64) -> f64 {
         match self {
@@ -93,6 +135,8 @@ impl FresnelQuantity {
             FresnelQuantity::SqrtF0 => x * x,
             FresnelQuantity::EtaReflectance => (1.0 + x) / (1.0 - x),
             FresnelQuantity::InverseEtaReflectance => (1.0 - x) / (1.0 + x),
+            FresnelQuantity::SchlickExponent => x,
+            FresnelQuantity::SchlickExponentRatio => 5.0 * (1.0 - x) / x,
         }
     }
 
@@ -105,6 +149,15 @@ impl FresnelQuantity {
             }
             return Err(format!(
                 "{} coordinate {x} gives F0 = {p}; F0 must be in [0, 1]",
+                self.name()
+            ));
+        }
+        if self.is_exponent() {
+            if x.is_finite() && p.is_finite() && (0.0..=MAX_EXPONENT).contains(&p) {
+                return Ok(p);
+            }
+            return Err(format!(
+                "{} coordinate {x} gives exponent e = {p}; e must be in [0, {MAX_EXPONENT:e}]",
                 self.name()
             ));
         }

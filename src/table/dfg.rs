@@ -227,6 +227,8 @@ pub(super) fn f82_channel(s: &Specular, mu: f64, tol: f64) -> (f64, f64, u64) {
     let g1v = s.ndf.g1(mu1);
     let rule = Rule {
         etas: &[],
+        cones: &[],
+        view_peak: false,
         estimator: crate::quadrature::cc1d::Estimator::Tail,
     };
     let e = integrate_micro_normals(&s.ndf, rule, mu, tol, |h| {

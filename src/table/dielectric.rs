@@ -227,6 +227,8 @@ fn shared_rule(
     let g1v = ndf.g1(mu1);
     let rule = Rule {
         etas,
+        cones: &[],
+        view_peak: false,
         estimator: Estimator::Tail,
     };
     integrate_micro_normals(ndf, rule, mu, tol, |h: &MicroNormal| {

@@ -55,6 +55,13 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
         }
         TableKind::AlbedoFresnel => {
             let q = fq.expect("three axes checked");
+            if q.is_exponent() {
+                return Err(format!(
+                    "axes.fresnel.quantity {:?} (a generalized Schlick exponent) applies to schlick-weight tables only; \
+                     an albedo-fresnel axis gives F0 (f0, sqrt-f0) or eta (eta, eta-reflectance, inverse-eta-reflectance)",
+                    q.name()
+                ));
+            }
             match (q.is_f0(), m.fresnel) {
                 (false, Fresnel::None) if spec.axes[2].fresnel_parameter(0).unwrap_or(1.0) < 1.0 => {
                     return Err(format!(
@@ -198,6 +205,9 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
     match spec.kind {
         TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
             Some(super::dielectric::fibre_fn(spec))
+        }
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+            Some(super::schlick_weight::fibre_fn(spec))
         }
         TableKind::AlbedoFresnel => fresnel_fibre_fn(spec),
         _ => None,

@@ -16,6 +16,7 @@ pub mod energy;
 pub mod local;
 pub mod ltc;
 pub mod methods;
+pub mod schlick_weight;
 mod smooth;
 pub mod spec;
 pub mod texel;
@@ -279,6 +280,9 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
             }
             TableKind::DielectricAlbedo => dielectric::texel_fn(spec),
             TableKind::DielectricAlbedoAvg => dielectric_average::texel_fn(spec),
+            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+                schlick_weight::texel_fn(spec)
+            }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::texel_fn(spec),
             TableKind::Ltc | TableKind::LtcSphere => unreachable!("baked by bake_ltc above"),
         };
@@ -689,6 +693,7 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
             dielectric::channels(spec)
         }
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => schlick_weight::channels(spec),
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
         TableKind::Ltc | TableKind::LtcSphere => ltc::channels(spec),
     }

@@ -13,6 +13,7 @@
 //! * Kulla–Conty `E = 1`, `E_avg = 1`; `albedo-fresnel` `E = F_p(μ)` of the slice's Fresnel;
 //! * the smooth dielectric interface `R = F(μ; η)`, `T = 1 − R` (total internal reflection
 //!   included in F), so `E = R + T = 1` and `E_avg = 1`;
+//! * the generalized-Schlick averages `S_vndf = S_albedo = s(μ)` (h = n);
 //! * Smith `G1 = 1`, `G2 = 1` (0 where a cosine is 0: Λ(0) = ∞ for every α > 0); the same
 //!   for Schlick-GGX with `k = α/2` (`G1 = μ/(μ(1 − k) + k) → 1`); Schlick-GGX with
 //!   Karis' direct-light `k = (√α + 1)²/8 → 1/8`: `G1(μ) = μ/(7μ/8 + 1/8)`, so the mirror
@@ -150,6 +151,9 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
         // R + T = F + (1 − F) for μ > 0 (validation keeps μ > 0)
         TableKind::DielectricAlbedo => TexelResult::exact(vec![1.0]),
         TableKind::DielectricAlbedoAvg => TexelResult::exact(vec![1.0]),
+        TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+            super::schlick_weight::smooth_texel(spec, idx)
+        }
         TableKind::Dfg => {
             let mu = mu();
             let g = mirror_g(m.masking, mu);

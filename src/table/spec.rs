@@ -37,6 +37,13 @@ pub enum TableKind {
     /// Average albedo E_avg = 2∫E(μ)μ dμ of a rough dielectric interface over (roughness; η),
     /// 2D (Cycles' `glass_Eavg`, `glass_inv_Eavg`).
     DielectricAlbedoAvg,
+    /// The mean of the generalized-Schlick blend weight s(v·h) (F = F0 + (F90 − F0) s) over
+    /// the GGX visible normals, over (cos θv; roughness; exponent or η), 3D (Cycles'
+    /// `gen_schlick_s`, `gen_schlick_ior_s`; `table::schlick_weight`).
+    SchlickWeightVndf,
+    /// The albedo-weighted mean of the generalized-Schlick blend weight, over (cos θv;
+    /// roughness; exponent or η), 3D (`table::schlick_weight`).
+    SchlickWeightAlbedo,
     /// Directional albedo of a classic analytic model (Phong, Blinn-Phong, Ward,
     /// Ashikhmin–Shirley, Lafortune): E(cos θv; exponent or α), 2D (`table::classic`).
     ClassicAlbedo,
@@ -54,7 +61,7 @@ pub enum TableKind {
 }
 
 impl TableKind {
-    pub const ALL: [TableKind; 12] = [
+    pub const ALL: [TableKind; 14] = [
         TableKind::Ndf,
         TableKind::G1,
         TableKind::G2,
@@ -67,6 +74,8 @@ impl TableKind {
         TableKind::DielectricBtdf,
         TableKind::DielectricAlbedo,
         TableKind::DielectricAlbedoAvg,
+        TableKind::SchlickWeightVndf,
+        TableKind::SchlickWeightAlbedo,
     ];
 
     /// The kinds of the classic analytic models (`table::classic`); not in [`Self::ALL`],
@@ -111,6 +120,8 @@ impl TableKind {
             TableKind::DielectricBtdf => "dielectric-btdf",
             TableKind::DielectricAlbedo => "dielectric-albedo",
             TableKind::DielectricAlbedoAvg => "dielectric-albedo-avg",
+            TableKind::SchlickWeightVndf => "schlick-weight-vndf",
+            TableKind::SchlickWeightAlbedo => "schlick-weight-albedo",
             TableKind::ClassicAlbedo => "classic-albedo",
             TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
             TableKind::Ltc => "ltc",
@@ -128,9 +139,11 @@ impl TableKind {
             TableKind::Albedo | TableKind::Dfg => &["cos_theta_v", "roughness"],
             TableKind::AlbedoAvg => &["roughness"],
             TableKind::KullaConty => &["cos_theta_v", "roughness"],
-            TableKind::AlbedoFresnel | TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
-                &["cos_theta_v", "roughness", "fresnel"]
-            }
+            TableKind::AlbedoFresnel
+            | TableKind::DielectricBtdf
+            | TableKind::DielectricAlbedo
+            | TableKind::SchlickWeightVndf
+            | TableKind::SchlickWeightAlbedo => &["cos_theta_v", "roughness", "fresnel"],
             TableKind::DielectricAlbedoAvg => &["roughness", "fresnel"],
             TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
             TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
@@ -161,6 +174,12 @@ impl TableKind {
             }
             TableKind::DielectricAlbedo => {
                 "rough dielectric interface: directional albedo E = R + T(cos theta_v; roughness; eta)"
+            }
+            TableKind::SchlickWeightVndf => {
+                "generalized-Schlick blend weight s(v.h) = (1 - v.h)^e or the normalized exact dielectric Fresnel, averaged over the GGX visible normals: S_vndf(cos theta_v; roughness; exponent or eta) (Cycles' gen_schlick tables)"
+            }
+            TableKind::SchlickWeightAlbedo => {
+                "generalized-Schlick blend weight s(v.h) = (1 - v.h)^e or the normalized exact dielectric Fresnel, albedo-weighted: S_albedo = int s f cos / int f cos (cos theta_v; roughness; exponent or eta)"
             }
             TableKind::DielectricAlbedoAvg => {
                 "rough dielectric interface: average albedo E_avg = 2 int_0^1 (R + T)(mu) mu dmu (roughness; eta)"

@@ -140,6 +140,8 @@ impl TableSpec {
                             | (TableKind::ClassicAlbedoAniso, _)
                             | (TableKind::DielectricBtdf, _)
                             | (TableKind::DielectricAlbedo, _)
+                            | (TableKind::SchlickWeightVndf, _)
+                            | (TableKind::SchlickWeightAlbedo, _)
                             | (TableKind::Vgroove, "n_dot_h") // (an ltc table's views: table::ltc::validate, which says why and how to clamp)
                     ) || kind == TableKind::Ltc;
                     if !zero_ok && first <= 0.0 {
@@ -430,6 +432,9 @@ impl TableSpec {
             }
             TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
                 super::dielectric::validate(self)?
+            }
+            TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
+                super::schlick_weight::validate(self)?
             }
             TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
                 unreachable!("validated above")
