@@ -663,6 +663,7 @@ pub fn fit_grid(
     let shape = opts.shape();
     let lines: Vec<Result<Vec<LtcTexel>, LtcError>> = alphas
         .par_iter()
+        .with_max_len(1)
         .map(|&alpha| {
             let brdf = model(alpha).map_err(LtcError::Domain)?;
             if let Some(s) = &brdf.specular {

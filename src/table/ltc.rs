@@ -350,7 +350,7 @@ pub(crate) fn bake(spec: &TableSpec, stop: &(dyn Fn() -> bool + Sync), limit: f6
     let lines: Vec<Option<LineResult>> = if integrate {
         (0..ny)
             .into_par_iter()
-            .with_min_len(1)
+            .with_max_len(1)
             .map(|j| (!stop()).then(|| line(spec, j, fit, &opts)))
             .collect()
     } else {
