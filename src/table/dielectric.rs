@@ -107,7 +107,8 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
     Ok(())
 }
 
-fn eta_quantities() -> String {
+/// The names of the relative-index Fresnel quantities, for error messages.
+pub(crate) fn eta_quantities() -> String {
     FresnelQuantity::ALL
         .iter()
         .filter(|q| q.is_eta())

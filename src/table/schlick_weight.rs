@@ -33,7 +33,7 @@ use crate::model::btdf::{Facet, MicroNormal, SmithForm};
 use crate::model::fresnel::{
     generalized_schlick_weight, normalized_dielectric_kink, normalized_dielectric_weight,
 };
-use crate::model::{Fresnel, FresnelQuantity, Ndf, NdfKind};
+use crate::model::{Fresnel, Ndf, NdfKind};
 use crate::quadrature::cc1d::Estimator;
 
 /// The parameters of one slice: a generalized Schlick exponent or a relative index.
@@ -117,12 +117,7 @@ pub(crate) fn validate(spec: &TableSpec) -> Result<(), String> {
         _ => Err(format!(
             "axes.fresnel.quantity must be a generalized Schlick exponent (schlick-exponent, \
              schlick-exponent-ratio) or a relative index ({}) for a {kind} table",
-            FresnelQuantity::ALL
-                .iter()
-                .filter(|q| q.is_eta())
-                .map(|q| q.name())
-                .collect::<Vec<_>>()
-                .join(", ")
+            super::dielectric::eta_quantities()
         )),
     }
 }
