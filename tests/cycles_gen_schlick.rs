@@ -26,18 +26,9 @@
 //! Negative controls: the albedo-weighted mean (`schlick-weight-albedo`, the other definition)
 //! and a transposed layout miss Cycles' tables by far more than the bound.
 
-const SHADER_TABLES: &str = include_str!("data/engines/cycles/shader.tables");
-
-fn cycles(name: &str) -> Vec<f64> {
-    let start = SHADER_TABLES
-        .find(&format!("table_{name}["))
-        .unwrap_or_else(|| panic!("{name} in shader.tables"));
-    let body = &SHADER_TABLES[start..];
-    let body = &body[body.find('{').unwrap() + 1..body.find('}').unwrap()];
-    body.split(',')
-        .map(|s| s.trim().trim_end_matches('f').parse::<f64>().unwrap())
-        .collect()
-}
+#[path = "common/cycles.rs"]
+mod cycles_tables;
+use cycles_tables::table as cycles;
 
 /// The built-in engine preset's one table (its kind optionally replaced), baked, in its
 /// stored order.

@@ -8,18 +8,9 @@
 //! which checks the same kinds on the same grid from explicit specs; this test checks that
 //! the shipped presets are that grid, with Cycles' axis order.
 
-const SHADER_TABLES: &str = include_str!("data/engines/cycles/shader.tables");
-
-fn cycles(name: &str) -> Vec<f64> {
-    let start = SHADER_TABLES
-        .find(&format!("table_{name}["))
-        .unwrap_or_else(|| panic!("{name} in shader.tables"));
-    let body = &SHADER_TABLES[start..];
-    let body = &body[body.find('{').unwrap() + 1..body.find('}').unwrap()];
-    body.split(',')
-        .map(|s| s.trim().trim_end_matches('f').parse::<f64>().unwrap())
-        .collect()
-}
+#[path = "common/cycles.rs"]
+mod cycles_tables;
+use cycles_tables::table as cycles;
 
 /// The built-in engine preset's one table, baked and in its stored order.
 fn stored(name: &str) -> Vec<f64> {

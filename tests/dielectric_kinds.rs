@@ -42,19 +42,9 @@ mod reference;
 
 use brdfbake::lut::Lut;
 
-const SHADER_TABLES: &str = include_str!("data/engines/cycles/shader.tables");
-
-/// A Cycles table's values, in its printed order (index z·256 + y·16 + x for glass_E).
-fn cycles(name: &str) -> Vec<f64> {
-    let start = SHADER_TABLES
-        .find(&format!("table_{name}["))
-        .unwrap_or_else(|| panic!("{name} in shader.tables"));
-    let body = &SHADER_TABLES[start..];
-    let body = &body[body.find('{').unwrap() + 1..body.find('}').unwrap()];
-    body.split(',')
-        .map(|s| s.trim().trim_end_matches('f').parse::<f64>().unwrap())
-        .collect()
-}
+#[path = "common/cycles.rs"]
+mod cycles_tables;
+use cycles_tables::table as cycles;
 
 fn bake(kind: &str, masking: &str, axes: &str) -> Lut {
     let text = format!(
