@@ -302,8 +302,8 @@ fn texels_sit_where_eevee_puts_them() {
 /// total internal reflection) with Schlick's weight on the less dense side at h = n, within
 /// f32 rounding plus f64 rounding (1e-12). And interior texels (both sides of the critical
 /// angle, smooth to rough, small to large η) against the independent integrator
-/// ([`expected`], requested 1e-7): within the bake's estimate per channel + the integrator's
-/// + f32 rounding. Negative control: with the view's cosine in Schlick's weight (wrong for
+/// ([`expected`], requested 1e-7): within the bake's estimate per channel plus the
+/// integrator's plus f32 rounding. Negative control: with the view's cosine in Schlick's weight (wrong for
 /// η < 1) the integrator misses bsdf_ggx by more than 0.05 somewhere among these texels.
 #[test]
 fn tables_meet_the_smooth_limit_and_the_independent_integrator() {
@@ -356,8 +356,8 @@ fn tables_meet_the_smooth_limit_and_the_independent_integrator() {
         }
         if preset == BSDF {
             let (wrong, _) = expected(p, Weight::View, 1e-5);
-            for k in 0..3 {
-                control = control.max((lut.texel([x, y, z], k) as f64 - wrong[k]).abs());
+            for (k, w) in wrong.iter().enumerate() {
+                control = control.max((lut.texel([x, y, z], k) as f64 - w).abs());
             }
         }
     }
@@ -396,6 +396,8 @@ fn eevee_shipped_values_are_its_estimator_within_its_error() {
         let quotes = shipped(file);
         assert!(quotes.len() >= 40, "{file}: {} quotes", quotes.len());
         let (mut worst, mut worst_delta, mut shifted_misses) = (0.0f64, 0.0f64, 0);
+        // (btdf_ggx's column 63 on its own: its η differs)
+        let mut worst_63 = 0.0f64;
         let mut wrong_misses = vec![0; wrongs.len()];
         for (z, y, x, ship) in &quotes {
             let (z, y, x) = (*z, *y, *x);
@@ -421,7 +423,11 @@ fn eevee_shipped_values_are_its_estimator_within_its_error() {
                     "{preset} ({z}, {y}, {x}) channel {ch}: ours {ours} vs EEVEE {} (bound {bound:e})",
                     ship[ch]
                 );
-                worst = worst.max((ours - ship[ch]).abs());
+                if x == 63 && preset == BTDF {
+                    worst_63 = worst_63.max((ours - ship[ch]).abs());
+                } else {
+                    worst = worst.max((ours - ship[ch]).abs());
+                }
                 worst_delta = worst_delta.max(delta);
             }
             // (1) half a texel off along the view axis
@@ -451,7 +457,7 @@ fn eevee_shipped_values_are_its_estimator_within_its_error() {
             }
         }
         eprintln!(
-            "{preset}: {} quoted texels, worst |ours - EEVEE| {worst:.2e}, worst column-63 delta {worst_delta:.2e}; half-texel shift misses at {shifted_misses}; wrong weights {wrongs:?} miss at {wrong_misses:?}",
+            "{preset}: {} quoted texels, worst |ours - EEVEE| {worst:.2e} (btdf_ggx's column 63: {worst_63:.2e}, its delta up to {worst_delta:.2e}); half-texel shift misses at {shifted_misses}; wrong weights {wrongs:?} miss at {wrong_misses:?}",
             quotes.len()
         );
         assert!(
