@@ -472,3 +472,90 @@ fn eevee_shipped_values_are_its_estimator_within_its_error() {
         }
     }
 }
+
+/// For η > 1 Schlick's weight is the view's s = (1 − v·h)⁵ and the reflected direction does
+/// not depend on η, so a `dielectric-schlick` table's A and B are, in every η ≥ 1 slice,
+/// Karis' split sum A, B of the GGX BRDF with the same masking — a `dfg` table, which
+/// brdfbake integrates by another kernel (`table::dfg`). Both baked at 1e-7 here: equal
+/// within the two bakes' estimates plus f32 rounding of each. Negative control: an η < 1
+/// slice (its s from the refracted cosine, total internal reflection in B) differs from the
+/// split sum by more than 0.01 somewhere.
+#[test]
+fn above_one_the_reflected_channels_are_the_brdf_split_sum() {
+    use brdfbake::lut::{Axis, Convention, Quantity};
+    use brdfbake::model::{Fresnel, FresnelQuantity, RoughnessQuantity};
+    use brdfbake::table::{bake, DfgLayout, ModelSpec, Storage, TableKind, TableSpec};
+    let model = ModelSpec {
+        ndf: Some(NdfKind::Ggx),
+        masking: Masking::SmithSeparable,
+        fresnel: Fresnel::None,
+        diffuse_weight: 0.0,
+        classic: None,
+    };
+    let mus = Axis::new(
+        "cos_theta_v",
+        Quantity::Cosine,
+        6,
+        [0.0, 1.0],
+        Convention::Centers,
+    );
+    let rough = Axis::new(
+        "roughness",
+        Quantity::Roughness(RoughnessQuantity::Perceptual),
+        4,
+        [0.2, 1.0],
+        Convention::Endpoints,
+    );
+    let etas = Axis::new(
+        "fresnel",
+        Quantity::Fresnel(FresnelQuantity::Eta),
+        3,
+        [0.8, 2.4],
+        Convention::Endpoints,
+    );
+    let spec = |kind: TableKind, axes: Vec<Axis>| TableSpec {
+        name: "t".into(),
+        kind,
+        model: model.clone(),
+        axes,
+        dfg_layout: (kind == TableKind::Dfg).then_some(DfgLayout::Karis),
+        cloth: false,
+        cloth_alpha_min: None,
+        ltc_channels: None,
+        storage: Storage::F32,
+        tolerance: 1e-7,
+    };
+    let schlick = bake(&spec(
+        TableKind::DielectricSchlick,
+        vec![mus.clone(), rough.clone(), etas.clone()],
+    ))
+    .unwrap();
+    let dfg = bake(&spec(TableKind::Dfg, vec![mus, rough])).unwrap();
+    let mut control: f64 = 0.0;
+    for z in 0..3 {
+        let eta = etas.coord(z);
+        for j in 0..4 {
+            for i in 0..6 {
+                for c in 0..2 {
+                    let (s, d) = (
+                        schlick.texel([i, j, z], c) as f64,
+                        dfg.texel([i, j, 0], c) as f64,
+                    );
+                    if eta < 1.0 {
+                        control = control.max((s - d).abs());
+                        continue;
+                    }
+                    let bound = schlick.error_estimate[c] + dfg.error_estimate[c] + 2.0 * F32;
+                    assert!(
+                        (s - d).abs() <= bound,
+                        "eta {eta}, texel ({i}, {j}) channel {c}: {s} vs the split sum {d} (bound {bound:e})"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        control > 0.01,
+        "an eta < 1 slice should not be the split sum: {control}"
+    );
+}
