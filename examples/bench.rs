@@ -336,12 +336,14 @@ fn reference_texel(spec: &TableSpec, lut: &Lut, idx: [usize; 3]) -> (Vec<Option<
     let x = |k: usize| lut.axes[k].coord(idx[k]);
     match spec.kind {
         // (the LTC tables are measured by their lit error: the `ltc` rows; the schlick-weight
-        // kinds have no reference here yet: tests/cycles_gen_schlick.rs checks them against
-        // Cycles' tables)
+        // kinds and dielectric-schlick have no reference here yet: tests/cycles_gen_schlick.rs
+        // and tests/eevee_bsdf_ggx.rs check them against the engines' tables and their own
+        // independent integrators)
         TableKind::Ltc
         | TableKind::LtcSphere
         | TableKind::SchlickWeightVndf
-        | TableKind::SchlickWeightAlbedo => (vec![None; lut.channels.len()], 0.0),
+        | TableKind::SchlickWeightAlbedo
+        | TableKind::DielectricSchlick => (vec![None; lut.channels.len()], 0.0),
         TableKind::Ndf => {
             let r = RefModel::new(m.ndf.expect("ndf"), alpha_at(1), Masking::None);
             let c = x(0);

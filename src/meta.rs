@@ -270,6 +270,7 @@ pub fn reconstruction(spec: &TableSpec) -> &'static str {
             crate::table::dielectric::reconstruction(spec)
         }
         TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => crate::table::schlick_weight::reconstruction(spec),
+        TableKind::DielectricSchlick => crate::table::dielectric_schlick::reconstruction(spec),
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => {
             crate::table::classic::reconstruction(spec)
         }
@@ -323,6 +324,19 @@ fn model_json(spec: &TableSpec) -> Value {
             "G = G1(v) G1(l) separable Smith"
         };
         v["form"] = json!(format!("rough dielectric interface (Walter et al. 2007): f_r = D G F / (4 |n.l| |n.v|), f_t = |v.h| |l.h| / (|n.v| |n.l|) eta^2 (1 - F) D G / (v.h + eta l.h)^2, eta = eta_inside / eta_view_side, {g}"));
+    }
+    if spec.kind == TableKind::DielectricSchlick {
+        let z = spec.axes.len() - 1;
+        v["fresnel"] = json!({
+            "name": "schlick, per slice: F0 = ((1 - eta)/(1 + eta))^2 of the fresnel axis' eta, weight s = (1 - cos theta_o)^5 on the less dense side (1 under total internal reflection); F0 and F90 are left to the shader (the channels are their weights)",
+            "slices_eta": (0..spec.axes[z].size).map(|k| crate::table::dielectric::eta_of_slice(spec, k)).collect::<Vec<_>>(),
+        });
+        let g = if m.masking == crate::model::Masking::SmithHeightCorrelated {
+            "G = 1/(1 + Lambda(v) + Lambda(l)) height-correlated Smith on both sides"
+        } else {
+            "G = G1(v) G1(l) separable Smith"
+        };
+        v["form"] = json!(format!("Schlick split sum of a rough dielectric interface (Walter et al. 2007 with Schlick's F): A = int D c/(n.v) (1 - s) G(v, l_r), B = int D c/(n.v) s G(v, l_r), T = int D c/(n.v) (1 - s) G(v, l_t) over micro-normals h (c = v.h), eta = eta_inside / eta_view_side, {g}"));
     }
     if spec.kind == TableKind::Dfg {
         v["split_sum"] = json!({

@@ -103,6 +103,14 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/eevee-btdf-split-sum-ggx.json"),
     ),
     (
+        "eevee-bsdf-ggx",
+        include_str!("../presets/engines/eevee-bsdf-ggx.json"),
+    ),
+    (
+        "eevee-btdf-ggx",
+        include_str!("../presets/engines/eevee-btdf-ggx.json"),
+    ),
+    (
         "gltf-lut-charlie",
         include_str!("../presets/engines/gltf-lut-charlie.json"),
     ),

@@ -1068,6 +1068,7 @@ pub fn exact_at(
             crate::table::energy::texel_fn(&spec)
         }
         TableKind::DielectricAlbedo => crate::table::dielectric::texel_fn(&spec),
+        TableKind::DielectricSchlick => crate::table::dielectric_schlick::texel_fn(&spec),
         TableKind::DielectricAlbedoAvg => crate::table::dielectric_average::texel_fn(&spec),
         TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
             crate::table::schlick_weight::texel_fn(&spec)

@@ -238,6 +238,18 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
         }
         K::DielectricAlbedoAvg => (100_000.0, 0.0),
+        // dielectric-schlick: one rule per texel with dielectric-btdf's breakpoints; measured
+        // 6,034 (all η < 1, eevee-bsdf-ggx) and 2,420 (all η > 1, eevee-btdf-ggx) per texel
+        // (2026-12-02)
+        K::DielectricSchlick => {
+            let frac = spec.axes.get(2).map_or(1.0, |z| {
+                let below = (0..z.size)
+                    .filter(|&k| z.fresnel_parameter(k).is_some_and(|eta| eta < 1.0))
+                    .count();
+                below as f64 / z.size.max(1) as f64
+            });
+            (6_000.0 * frac + 2_400.0 * (1.0 - frac), 0.0)
+        }
         // schlick-weight-*: measured 1,165 (exponent axis) and 1,186 (eta axis) per texel on
         // the cycles-ggx-gen-schlick-* presets (2026-12-02, fibres of 8 slices)
         K::SchlickWeightVndf | K::SchlickWeightAlbedo => (1_200.0, 0.0),

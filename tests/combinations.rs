@@ -118,6 +118,7 @@ fn every_combination_bakes_or_is_rejected() {
                                         TableKind::KullaConty
                                             | TableKind::AlbedoFresnel
                                             | TableKind::DielectricBtdf
+                                            | TableKind::DielectricSchlick
                                     ) && energy_bounded
                                     {
                                         assert!(
@@ -240,7 +241,9 @@ fn edge_texels_are_finite_and_bounded() {
                         let ch = &lut.channels[i % nc].name;
                         assert!(v.is_finite() && *v >= 0.0, "{what}: texel {i} {ch} = {v}");
                         let bounded_by_1 =
-                            // (a schlick-weight table is a mean of s in [0, 1])
+                            // (a schlick-weight table is a mean of s in [0, 1]; a
+                            // dielectric-schlick channel is at most A + B or T, each ≤ 1 by
+                            // the visible normals' normalization)
                             matches!(
                                 kind,
                                 TableKind::G1
@@ -248,6 +251,7 @@ fn edge_texels_are_finite_and_bounded() {
                                     | TableKind::Vgroove
                                     | TableKind::SchlickWeightVndf
                                     | TableKind::SchlickWeightAlbedo
+                                    | TableKind::DielectricSchlick
                             )
                                 || (energy_bounded
                                     && (matches!(kind, TableKind::Albedo | TableKind::AlbedoAvg)

@@ -452,3 +452,91 @@ fn schlick_ggx_approaches_its_smooth_limit_at_its_order() {
         }
     }
 }
+
+/// `dielectric-schlick` on both sides of η = 1: its α = 0 row holds A = 1 − s, B = s,
+/// T = 1 − s with Schlick's s = (1 − cos θ_o)⁵ on the less dense side — v·h = μ for η > 1,
+/// the refracted cosine √(1 − (1 − μ²)/η²) from Snell's law for η < 1, s = 1 (T = 0) under
+/// total internal reflection — written here, not from the library (within f32); and its
+/// integrals at small α approach that row as the other kinds' do (`integrals_approach_the_
+/// smooth_limit`: the difference falling 30× from α = 3e-3 to 3e-4, and within 1e-6 at
+/// 3e-4). For η < 1 the limit has a kink at the critical angle θc, and GGX's tail reaches
+/// it: a fraction α²/(α² + tan²δ) ≤ α²/tan²δ of the visible normals' projected area lies
+/// beyond an angle δ from the normal, so the weight that crosses θc (δ = |θv − θc|, 5.1° at
+/// the nearest view here) moves the values by up to that, 1.2e-5 at α = 3e-4: the bound
+/// there is max(1e-6, α²/tan²δ).
+#[test]
+fn dielectric_schlick_meets_and_approaches_its_smooth_limit() {
+    let mus = cos_axis("cos_theta_v", 5, [0.3, 1.0]);
+    let eta = Axis::new(
+        "fresnel",
+        Quantity::Fresnel(FresnelQuantity::Eta),
+        2,
+        [0.7, 1.5],
+        Convention::Endpoints,
+    );
+    let m = model(NdfKind::Ggx, Masking::SmithSeparable, Fresnel::None, 0.0);
+    let kind = TableKind::DielectricSchlick;
+    let limit = bake(&spec(
+        kind,
+        m.clone(),
+        vec![mus.clone(), alpha_axis(2), eta.clone()],
+    ))
+    .unwrap();
+    for z in 0..2 {
+        let e = eta.coord(z);
+        for i in 0..5 {
+            let mu = mus.coord(i);
+            let s = if e >= 1.0 {
+                schlick_weight(mu)
+            } else {
+                let s2t = (1.0 - mu * mu) / (e * e);
+                if s2t >= 1.0 {
+                    1.0
+                } else {
+                    schlick_weight((1.0 - s2t).sqrt())
+                }
+            };
+            for (c, want) in [1.0 - s, s, 1.0 - s].into_iter().enumerate() {
+                let got = limit.texel([i, 0, z], c) as f64;
+                assert!(
+                    (got - want).abs() <= F32,
+                    "alpha = 0, eta {e}, mu {mu}, channel {c}: {got} against {want}"
+                );
+            }
+        }
+    }
+    let at = |alpha: f64| {
+        bake(&spec(
+            kind,
+            m.clone(),
+            vec![mus.clone(), at_alpha(alpha), eta.clone()],
+        ))
+        .unwrap()
+    };
+    let (coarse, fine) = (at(3e-3), at(3e-4));
+    for z in 0..2 {
+        for c in 0..3 {
+            for i in 0..5 {
+                let l0 = limit.texel([i, 0, z], c) as f64;
+                let d1 = (coarse.texel([i, 0, z], c) as f64 - l0).abs();
+                let d2 = (fine.texel([i, 0, z], c) as f64 - l0).abs();
+                let (e, mu) = (eta.coord(z), mus.coord(i));
+                let what = format!("eta {e} channel {c} at mu {mu}");
+                let tail = if e < 1.0 {
+                    let delta = (mu.acos() - (1.0 - e * e).sqrt().acos()).abs();
+                    3e-4f64.powi(2) / delta.tan().powi(2)
+                } else {
+                    0.0
+                };
+                assert!(
+                    d2 <= tail.max(1e-6),
+                    "{what}: |(3e-4) - (0)| = {d2} (bound {tail:e})"
+                );
+                assert!(
+                    d2 <= d1 / 30.0 + 3.0 * F32,
+                    "{what}: the difference fell from {d1} (alpha 3e-3) to {d2} (3e-4) only"
+                );
+            }
+        }
+    }
+}

@@ -18,3 +18,4 @@ pub mod fresnel_axis;
 pub use fresnel_axis::FresnelQuantity;
 pub mod btdf;
 pub mod ltc;
+pub mod schlick_dielectric;

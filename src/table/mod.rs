@@ -12,6 +12,7 @@ pub mod dfg;
 pub mod dfg_lines;
 pub mod dielectric;
 pub mod dielectric_average;
+pub mod dielectric_schlick;
 pub mod energy;
 pub mod local;
 pub mod ltc;
@@ -280,6 +281,7 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
             }
             TableKind::DielectricAlbedo => dielectric::texel_fn(spec),
             TableKind::DielectricAlbedoAvg => dielectric_average::texel_fn(spec),
+            TableKind::DielectricSchlick => dielectric_schlick::texel_fn(spec),
             TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
                 schlick_weight::texel_fn(spec)
             }
@@ -694,6 +696,7 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
             dielectric::channels(spec)
         }
         TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => schlick_weight::channels(spec),
+        TableKind::DielectricSchlick => dielectric_schlick::channels(spec),
         TableKind::ClassicAlbedo | TableKind::ClassicAlbedoAniso => classic::channels(spec),
         TableKind::Ltc | TableKind::LtcSphere => ltc::channels(spec),
     }

@@ -14,6 +14,8 @@
 //! * the smooth dielectric interface `R = F(μ; η)`, `T = 1 − R` (total internal reflection
 //!   included in F), so `E = R + T = 1` and `E_avg = 1`;
 //! * the generalized-Schlick averages `S_vndf = S_albedo = s(μ)` (h = n);
+//! * the Schlick split sum of a dielectric `A = 1 − s`, `B = s`, `T = 1 − s` with Schlick's
+//!   weight s on the less dense side at h = n (`model::schlick_dielectric`);
 //! * Smith `G1 = 1`, `G2 = 1` (0 where a cosine is 0: Λ(0) = ∞ for every α > 0); the same
 //!   for Schlick-GGX with `k = α/2` (`G1 = μ/(μ(1 − k) + k) → 1`); Schlick-GGX with
 //!   Karis' direct-light `k = (√α + 1)²/8 → 1/8`: `G1(μ) = μ/(7μ/8 + 1/8)`, so the mirror
@@ -154,6 +156,7 @@ pub(crate) fn texel(spec: &TableSpec, idx: [usize; 3]) -> TexelResult {
         TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
             super::schlick_weight::smooth_texel(spec, idx)
         }
+        TableKind::DielectricSchlick => super::dielectric_schlick::smooth_texel(spec, idx),
         TableKind::Dfg => {
             let mu = mu();
             let g = mirror_g(m.masking, mu);

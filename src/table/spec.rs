@@ -44,6 +44,11 @@ pub enum TableKind {
     /// The albedo-weighted mean of the generalized-Schlick blend weight, over (cos θv;
     /// roughness; exponent or η), 3D (`table::schlick_weight`).
     SchlickWeightAlbedo,
+    /// The Schlick split sum of a rough dielectric interface (GGX): A, B, T with reflectance
+    /// F0·A + F90·B and transmittance (1 − F0)·T, Schlick's weight on the less dense side,
+    /// over (cos θv; roughness; η), 3D (EEVEE's `bsdf_ggx`, `btdf_ggx`;
+    /// `table::dielectric_schlick`).
+    DielectricSchlick,
     /// Directional albedo of a classic analytic model (Phong, Blinn-Phong, Ward,
     /// Ashikhmin–Shirley, Lafortune): E(cos θv; exponent or α), 2D (`table::classic`).
     ClassicAlbedo,
@@ -61,7 +66,7 @@ pub enum TableKind {
 }
 
 impl TableKind {
-    pub const ALL: [TableKind; 14] = [
+    pub const ALL: [TableKind; 15] = [
         TableKind::Ndf,
         TableKind::G1,
         TableKind::G2,
@@ -76,6 +81,7 @@ impl TableKind {
         TableKind::DielectricAlbedoAvg,
         TableKind::SchlickWeightVndf,
         TableKind::SchlickWeightAlbedo,
+        TableKind::DielectricSchlick,
     ];
 
     /// The kinds of the classic analytic models (`table::classic`); not in [`Self::ALL`],
@@ -122,6 +128,7 @@ impl TableKind {
             TableKind::DielectricAlbedoAvg => "dielectric-albedo-avg",
             TableKind::SchlickWeightVndf => "schlick-weight-vndf",
             TableKind::SchlickWeightAlbedo => "schlick-weight-albedo",
+            TableKind::DielectricSchlick => "dielectric-schlick",
             TableKind::ClassicAlbedo => "classic-albedo",
             TableKind::ClassicAlbedoAniso => "classic-albedo-aniso",
             TableKind::Ltc => "ltc",
@@ -143,7 +150,8 @@ impl TableKind {
             | TableKind::DielectricBtdf
             | TableKind::DielectricAlbedo
             | TableKind::SchlickWeightVndf
-            | TableKind::SchlickWeightAlbedo => &["cos_theta_v", "roughness", "fresnel"],
+            | TableKind::SchlickWeightAlbedo
+            | TableKind::DielectricSchlick => &["cos_theta_v", "roughness", "fresnel"],
             TableKind::DielectricAlbedoAvg => &["roughness", "fresnel"],
             TableKind::ClassicAlbedo => &["cos_theta_v", "roughness"],
             TableKind::ClassicAlbedoAniso => &["cos_theta_v", "roughness", "anisotropy"],
@@ -180,6 +188,9 @@ impl TableKind {
             }
             TableKind::SchlickWeightAlbedo => {
                 "generalized-Schlick blend weight s(v.h) = (1 - v.h)^e or the normalized exact dielectric Fresnel, albedo-weighted: S_albedo = int s f cos / int f cos (cos theta_v; roughness; exponent or eta)"
+            }
+            TableKind::DielectricSchlick => {
+                "Schlick split sum of a rough dielectric interface: A, B, T(cos theta_v; roughness; eta), reflectance F0 A + F90 B, transmittance (1 - F0) T, Schlick's weight on the less dense side (EEVEE's bsdf_ggx, btdf_ggx)"
             }
             TableKind::DielectricAlbedoAvg => {
                 "rough dielectric interface: average albedo E_avg = 2 int_0^1 (R + T)(mu) mu dmu (roughness; eta)"

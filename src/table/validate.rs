@@ -63,7 +63,11 @@ impl TableSpec {
             }
             // the critical-angle remap places a view cosine about the critical angle of the
             // fresnel axis' relative index: only a dielectric table's view axis has both
-            let coupled_kinds = [TableKind::DielectricBtdf, TableKind::DielectricAlbedo];
+            let coupled_kinds = [
+                TableKind::DielectricBtdf,
+                TableKind::DielectricAlbedo,
+                TableKind::DielectricSchlick,
+            ];
             if ax.warp.is_coupled() && !(coupled_kinds.contains(&kind) && ax.name == "cos_theta_v")
             {
                 return Err(format!(
@@ -140,6 +144,7 @@ impl TableSpec {
                             | (TableKind::ClassicAlbedoAniso, _)
                             | (TableKind::DielectricBtdf, _)
                             | (TableKind::DielectricAlbedo, _)
+                            | (TableKind::DielectricSchlick, _)
                             | (TableKind::SchlickWeightVndf, _)
                             | (TableKind::SchlickWeightAlbedo, _)
                             | (TableKind::Vgroove, "n_dot_h") // (an ltc table's views: table::ltc::validate, which says why and how to clamp)
@@ -430,9 +435,9 @@ impl TableSpec {
             TableKind::KullaConty | TableKind::AlbedoFresnel | TableKind::DielectricBtdf => {
                 super::energy::validate(self)?;
             }
-            TableKind::DielectricAlbedo | TableKind::DielectricAlbedoAvg => {
-                super::dielectric::validate(self)?
-            }
+            TableKind::DielectricAlbedo
+            | TableKind::DielectricAlbedoAvg
+            | TableKind::DielectricSchlick => super::dielectric::validate(self)?,
             TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
                 super::schlick_weight::validate(self)?
             }
