@@ -92,6 +92,10 @@ pub struct LtcFitOptions {
     /// The floor ε of the relative residual `(X − Y)/(Y + εΩ)`, a density per steradian of
     /// the normalized lobe.
     pub floor: f64,
+    /// The floor relative to the lobe's peak: a texel's floor is
+    /// `max(floor, peak_floor·y_max)`, `y_max` the normalized lobe's largest value on the
+    /// fit's rule (0: the absolute floor alone).
+    pub peak_floor: f64,
     /// The optimizer's settings.
     pub lm: LmSettings,
 }
@@ -106,6 +110,7 @@ impl Default for LtcFitOptions {
             energy_weight: 10.0,
             probe_weight: 1.0,
             floor: 1e-9,
+            peak_floor: 0.0,
             lm: LmSettings::default(),
         }
     }
@@ -246,6 +251,8 @@ impl Target {
             .zip(&y)
             .map(|(&dw, &yk)| opts.point_weight * dw / (2.0 * PI) + opts.energy_weight * dw * yk)
             .collect();
+        let y_max = y.iter().copied().fold(0.0, f64::max);
+        let floor = opts.floor.max(opts.peak_floor * y_max);
         let probes = if opts.probe_weight > 0.0 {
             // the BRDF's peak among the nodes
             let peak = y
@@ -253,7 +260,7 @@ impl Target {
                 .enumerate()
                 .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
                 .map(|(k, _)| rule.dirs[k]);
-            probes(v, fcos, norm, peak, opts.floor)
+            probes(v, fcos, norm, peak, floor)
         } else {
             Vec::new()
         };
@@ -263,7 +270,7 @@ impl Target {
             w,
             probes,
             probe_weight: opts.probe_weight,
-            floor: opts.floor,
+            floor,
             free_d: opts.free_d,
         }
     }
@@ -521,8 +528,10 @@ pub fn objective_at(
 
 /// `f cos` of a brdfbake BRDF at a half-vector node.
 pub fn brdf_fcos(brdf: &Brdf) -> impl Fn(&Node) -> f64 + '_ {
-    let wd = brdf.diffuse_weight / PI;
-    move |n: &Node| brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n)) + wd * n.n_dot_l
+    move |n: &Node| {
+        brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n))
+            + brdf.diffuse_cosine_weighted(n)
+    }
 }
 
 /// The lobe warp of a BRDF (its specular lobe's; a Lambertian one is a unit-width lobe).
