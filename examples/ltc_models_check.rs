@@ -6,7 +6,11 @@
 //! ```text
 //! cargo run --release --example ltc_models_check -- [--peak-floor K] [--floor F] [--side N]
 //!                                                  [--models a,b,...] [--mus a,b,...]
+//!                                                  [--heitz STRIDE]
 //! ```
+//! `--heitz STRIDE`: Heitz's 64² grid instead (fitted whole, as a bake fits it), judged at
+//! every STRIDE-th view and roughness (and the last of each): the distribution of the lit
+//! error over those texels and the worst five.
 
 use brdfbake::kernels::ltc_check::{lit_reference, PolygonLight};
 use brdfbake::kernels::ltc_fit::{fit_grid, LtcFitOptions};
@@ -68,6 +72,7 @@ fn main() {
             .map(|i| 0.35 + 0.65 * i as f64 / (n - 1).max(1) as f64)
             .collect()
     };
+    let heitz: Option<usize> = value("--heitz").map(|v| v.parse().expect("--heitz STRIDE"));
     let mus: Vec<f64> = value("--mus").map_or_else(
         || grid(side),
         |v| {
@@ -76,7 +81,15 @@ fn main() {
                 .collect()
         },
     );
-    let alphas: Vec<f64> = grid(side).iter().map(|r| r * r).collect();
+    let mut alphas: Vec<f64> = grid(side).iter().map(|r| r * r).collect();
+    let mut mus = mus;
+    if heitz.is_some() {
+        (mus, alphas) = brdfbake::table::ltc_layout::heitz_axes(64);
+    }
+    let judged = |i: usize, n: usize| match heitz {
+        Some(st) => i % st == 0 || i == n - 1,
+        None => true,
+    };
     for (name, model) in MODELS {
         if only.as_ref().is_some_and(|o| !o.iter().any(|m| m == name)) {
             continue;
@@ -107,6 +120,11 @@ fn main() {
             .texels
             .par_iter()
             .enumerate()
+            .filter(|(k, t)| {
+                judged(k / alphas.len(), mus.len())
+                    && judged(k % alphas.len(), alphas.len())
+                    && t.norm > 0.0
+            })
             .map(|(k, t)| {
                 let (mu, alpha) = (mus[k / alphas.len()], alphas[k % alphas.len()]);
                 let brdf = spec.model.brdf(alpha).unwrap();
@@ -129,6 +147,28 @@ fn main() {
             "{name}: peak_floor {:e}: lit error worst {worst:.4}, largest cond*alpha*mu {cond:.3}, fit {secs:.2} s",
             o.peak_floor
         );
+        if heitz.is_some() {
+            let mut e: Vec<f64> = per.iter().map(|p| p.2).collect();
+            e.sort_by(f64::total_cmp);
+            let q = |p: f64| e[((e.len() - 1) as f64 * p).round() as usize];
+            println!(
+                "    {} texels judged: lit error median {:.4}, p90 {:.4}, max {:.4}",
+                e.len(),
+                q(0.5),
+                q(0.9),
+                q(1.0)
+            );
+            let mut w = per.clone();
+            w.sort_by(|a, b| b.2.total_cmp(&a.2));
+            w.truncate(5);
+            for p in &w {
+                println!(
+                    "    worst: mu {:.5} alpha {:.3e}: lit error {:.4}, cond*alpha*mu {:.3}",
+                    p.0, p.1, p.2, p.3
+                );
+            }
+            continue;
+        }
         for p in &per {
             println!(
                 "    mu {:.3} alpha {:.4}: lit error {:.4}, cond*alpha*mu {:.3}",

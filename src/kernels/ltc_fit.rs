@@ -28,6 +28,13 @@
 //!
 //! The residual is the lit value's relative error itself: unbounded above (a light lit
 //! 100× too bright is as wrong as the measure says) and at most 1 below (an unlit light).
+//! That asks the LTC to follow the lobe down to the floor, which an LTC can for GGX (both
+//! fall off as a power of the angle from their axis) but not for a lobe that falls faster
+//! or vanishes inside (Beckmann's Gaussian tails, Charlie sheen's empty centre): there
+//! every direction costs `X/(εΩ)` and the cheapest LTC was a razor at the parameter box.
+//! For those the table raises the floor to the lobe's peak density
+//! ([`LtcFitOptions::peak_floor`]; `table::ltc::fit_options` says which lobes and why),
+//! which makes the residual an absolute error in units of the peak away from it.
 //! The paper's own measure, `∫|f cos − norm·D|³` (Heitz et al. 2016, §4, after its
 //! Monte Carlo estimate in `fit/fitLTC.cpp`), weighs the peak alone; it is reported
 //! ([`FitReport::l3`]) on the same rule, not minimized.
