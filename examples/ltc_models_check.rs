@@ -9,8 +9,9 @@
 //!                                                  [--heitz STRIDE]
 //! ```
 //! `--heitz STRIDE`: Heitz's 64² grid instead (fitted whole, as a bake fits it), judged at
-//! every STRIDE-th view and roughness (and the last of each): the distribution of the lit
-//! error over those texels and the worst five.
+//! every STRIDE-th view and roughness from the first: the distribution of the lit error over
+//! those texels and the worst five. Texels whose norm is within the table's tolerance of 0
+//! are not judged (every lit value is within it of 0; the fit leaves them the cosine).
 
 use brdfbake::kernels::ltc_check::{lit_reference, PolygonLight};
 use brdfbake::kernels::ltc_fit::{fit_grid, LtcFitOptions};
@@ -87,7 +88,7 @@ fn main() {
         (mus, alphas) = brdfbake::table::ltc_layout::heitz_axes(64);
     }
     let judged = |i: usize, n: usize| match heitz {
-        Some(st) => i % st == 0 || i == n - 1,
+        Some(st) => i % st == 0 && i < n,
         None => true,
     };
     for (name, model) in MODELS {
@@ -123,7 +124,7 @@ fn main() {
             .filter(|(k, t)| {
                 judged(k / alphas.len(), mus.len())
                     && judged(k % alphas.len(), alphas.len())
-                    && t.norm > 0.0
+                    && t.norm > o.tolerance
             })
             .map(|(k, t)| {
                 let (mu, alpha) = (mus[k / alphas.len()], alphas[k % alphas.len()]);
@@ -148,6 +149,24 @@ fn main() {
             o.peak_floor
         );
         if heitz.is_some() {
+            // the conditioning of every texel, the grazing row included
+            let all = g
+                .texels
+                .iter()
+                .enumerate()
+                .map(|(k, t)| {
+                    let (mu, alpha) = (mus[k / alphas.len()], alphas[k % alphas.len()]);
+                    (t.ltc.condition_number() * alpha * mu, mu, alpha, t.norm)
+                })
+                .fold((0.0, 0.0, 0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+            println!(
+                "    all {} texels: largest cond*alpha*mu {:.3} (mu {:.5}, alpha {:.3e}, norm {:.3e})",
+                g.texels.len(),
+                all.0,
+                all.1,
+                all.2,
+                all.3
+            );
             let mut e: Vec<f64> = per.iter().map(|p| p.2).collect();
             e.sort_by(f64::total_cmp);
             let q = |p: f64| e[((e.len() - 1) as f64 * p).round() as usize];

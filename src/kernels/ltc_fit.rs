@@ -602,14 +602,15 @@ pub fn fit_texel(
         )));
     }
     let nf = norm_and_fresnel(brdf, mu, opts.tolerance);
-    if nf.norm == 0.0 {
-        // nothing is reflected (a sheen lobe of tiny α seen from above: its albedo underflows):
-        // every lit value is 0 whatever the matrix; the texel keeps the clamped cosine, which
-        // interpolates with its neighbours as well as any
-        return Ok(LtcTexel {
-            norm: 0.0,
-            ..LtcTexel::unfitted(nf)
-        });
+    if nf.norm <= opts.tolerance {
+        // nothing is reflected, to the table's tolerance (a sheen lobe of tiny α seen from
+        // above: its albedo is 2·10⁻¹⁵⁶ at α = 10⁻³, underflows to 0 or comes out as rounding
+        // below 0, −9·10⁻¹³ for Conty–Kulla's at α = 10⁻⁵): every lit value, at most `norm`,
+        // is within the tolerance of 0 whatever the matrix, and a fit to such a lobe ran
+        // into the parameter box (cond 10⁶ at α = 10⁻³). The texel keeps the clamped cosine,
+        // which interpolates with its neighbours as well as any, and the norm channel
+        // brdfbake's albedo as it is
+        return Ok(LtcTexel::unfitted(nf));
     }
     let fcos = brdf_fcos(brdf);
     let (ltc, fit) = fit_ltc(&fcos, mu, brdf_warp(brdf), nf.norm, start, shape, opts)?;
