@@ -425,3 +425,43 @@ fn diffuse_model_is_validated() {
         ))
     );
 }
+
+/// The optional preset `presets/extra/ltc-models.json` (not built in, not baked by default)
+/// is valid: three 64² `ltc` tables of Burley's diffuse, Beckmann and Charlie, on Heitz's
+/// axes (the `heitz-ltc` preset's), with the default channels.
+#[test]
+fn extra_ltc_preset_is_valid() {
+    use brdfbake::model::{DiffuseModel, NdfKind};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let p = brdfbake::preset::load(&root.join("presets/extra/ltc-models.json"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let heitz = brdfbake::preset::load(&root.join("presets/engines/heitz-ltc.json"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let models: Vec<(Option<NdfKind>, DiffuseModel, f64)> = p
+        .tables
+        .iter()
+        .map(|t| {
+            (
+                t.spec.model.ndf,
+                t.spec.model.diffuse_model,
+                t.spec.model.diffuse_weight,
+            )
+        })
+        .collect();
+    assert_eq!(
+        models,
+        [
+            (None, DiffuseModel::Burley, 1.0),
+            (Some(NdfKind::Beckmann), DiffuseModel::Lambert, 0.0),
+            (Some(NdfKind::Charlie), DiffuseModel::Lambert, 0.0),
+        ]
+    );
+    for t in &p.tables {
+        assert_eq!(t.spec.kind, brdfbake::table::TableKind::Ltc);
+        assert_eq!(t.spec.axes, heitz.tables[0].spec.axes, "{}", t.spec.name);
+        assert_eq!(
+            t.spec.ltc_channels.as_deref(),
+            Some(&brdfbake::table::LtcChannel::DEFAULT[..])
+        );
+    }
+}
