@@ -167,6 +167,10 @@ fn main() {
                 all.2,
                 all.3
             );
+            if per.is_empty() {
+                println!("    no texel judged");
+                continue;
+            }
             let mut e: Vec<f64> = per.iter().map(|p| p.2).collect();
             e.sort_by(f64::total_cmp);
             let q = |p: f64| e[((e.len() - 1) as f64 * p).round() as usize];
