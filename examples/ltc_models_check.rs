@@ -192,10 +192,11 @@ fn main() {
             }
             continue;
         }
-        for p in &per {
+        for (p, t) in per.iter().zip(&g.texels) {
+            let l = t.ltc;
             println!(
-                "    mu {:.3} alpha {:.4}: lit error {:.4}, cond*alpha*mu {:.3}",
-                p.0, p.1, p.2, p.3
+                "    mu {:.3} alpha {:.4}: lit error {:.4}, cond*alpha*mu {:.3}; M^-1 a {:.4} b {:.4} c {:.4} d {:.4}",
+                p.0, p.1, p.2, p.3, l.a, l.b, l.c, l.d
             );
         }
     }

@@ -680,6 +680,9 @@ fn ltc_section(table: &PresetTable, fit: Option<&Lut>) -> Value {
     });
     // (only when set, so that GGX tables keep their bytes)
     let opts = crate::table::ltc::fit_options(spec);
+    if opts.retro {
+        v["fit"]["bounds"] = json!("b <= 0 <= d (the lobe leans toward the view, as sheen scatters back), so that every bilinear lookup between texels is invertible");
+    }
     if opts.peak_floor > 0.0 {
         v["fit"]["floor"] = json!(format!(
             "the relative residuals' floor, lit_rms's included: max({:e}, {} * the normalized lobe's peak density) per texel (src/table/ltc.rs, fit_options: an LTC cannot follow this lobe's tails or hole relatively)",

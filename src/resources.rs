@@ -257,7 +257,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // Per model, the 64² table on Heitz's grid on 1 thread (fit, norm and Fresnel;
         // `examples/ltc_models_check.rs --heitz 64` with RAYON_NUM_THREADS=1, 2026-12-02, a
         // loaded machine): GGX 0.8–1.0 s, Lambert 0.84, Burley 3.6, Beckmann 4.4, Charlie +
-        // Ashikhmin 4.8, Charlie + Conty–Kulla 11.4: the fit scaled by 4, 5, 5 and 12 (their
+        // Ashikhmin 1.4, Charlie + Conty–Kulla 7.2: the fit scaled by 4, 5, 2 and 8 (their
         // BRDFs cost more per evaluation, and the optimizer takes more passes)
         K::Ltc => {
             use crate::model::{DiffuseModel, Masking, NdfKind};
@@ -265,7 +265,8 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             let m = &spec.model;
             let scale = match (m.ndf, m.masking) {
                 (Some(NdfKind::Ggx), _) => 1.0,
-                (Some(NdfKind::Charlie), Masking::ContyKulla | Masking::ContyKullaSoftened) => 12.0,
+                (Some(NdfKind::Charlie), Masking::ContyKulla | Masking::ContyKullaSoftened) => 8.0,
+                (Some(NdfKind::Charlie), _) => 2.0,
                 (Some(_), _) => 5.0,
                 (None, _) if m.diffuse_model == DiffuseModel::Burley => 4.0,
                 (None, _) => 1.0,

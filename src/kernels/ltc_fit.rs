@@ -103,6 +103,9 @@ pub struct LtcFitOptions {
     /// `max(floor, peak_floor·y_max)`, `y_max` the normalized lobe's largest value on the
     /// fit's rule (0: the absolute floor alone).
     pub peak_floor: f64,
+    /// The lobe leans toward the view (a sheen lobe's back-scatter): the box's signs are
+    /// `b ≤ 0 ≤ d` instead of `b ≥ 0 ≥ d` (see the bounds' doc).
+    pub retro: bool,
     /// The optimizer's settings.
     pub lm: LmSettings,
 }
@@ -118,6 +121,7 @@ impl Default for LtcFitOptions {
             probe_weight: 1.0,
             floor: 1e-9,
             peak_floor: 0.0,
+            retro: false,
             lm: LmSettings::default(),
         }
     }
@@ -291,16 +295,27 @@ impl Target {
 /// `b ≥ 0 ≥ d` at every texel every interpolated `M⁻¹` has `det/c = (a + b·|d|)/c² > 0`
 /// (each factor keeps its sign under convex combinations); with mixed signs two valid
 /// neighbours can interpolate to a singular matrix (seen: thousands of lookups in a 64²
-/// table fitted without them).
+/// table fitted without them). A lobe that leans toward the view ([`LtcFitOptions::retro`]:
+/// Charlie sheen, whose fitted axis lies on the view's side, `b < 0`, and whose support
+/// tilts the other way, `d > 0`) takes the mirror box, `b ≤ 0 ≤ d` (`b/a ∈ [−10⁶, 0]`,
+/// `d ∈ [0, 20]`), where `det/c = (a + |b|·d)/c² > 0` holds between texels all the same.
 const LN_MIN: f64 = -13.815510557964274; // ln 1e-6
 const LN_MAX: f64 = 20.72326583694641; // ln 1e9
 const TILT_MAX: f64 = 1e6;
 const D_MIN: f64 = -20.0;
 
-/// The box as `(lower, upper)` bounds of θ; `d` is held at 0 without `free_d`.
-fn bounds(free_d: bool) -> ([f64; P], [f64; P]) {
+/// The box as `(lower, upper)` bounds of θ; `d` is held at 0 without `free_d`; the signs
+/// of `b` and `d` swapped with `retro`.
+fn bounds(free_d: bool, retro: bool) -> ([f64; P], [f64; P]) {
     let dlo = if free_d { D_MIN } else { 0.0 };
-    ([LN_MIN, 0.0, LN_MIN, dlo], [LN_MAX, TILT_MAX, LN_MAX, 0.0])
+    if retro {
+        (
+            [LN_MIN, -TILT_MAX, LN_MIN, 0.0],
+            [LN_MAX, 0.0, LN_MAX, -dlo],
+        )
+    } else {
+        ([LN_MIN, 0.0, LN_MIN, dlo], [LN_MAX, TILT_MAX, LN_MAX, 0.0])
+    }
 }
 
 /// `θ → (a, b, c, d)`; `None` where that is not an [`Ltc`].
@@ -377,7 +392,7 @@ fn fit_target(tg: &Target, start: &Ltc, opts: &LtcFitOptions) -> Option<(Ltc, f6
     let r = minimize(
         |t: &[f64; P]| normal_eq(tg, t).map(|x| x.0),
         theta_of(&s0),
-        bounds(opts.free_d),
+        bounds(opts.free_d, opts.retro),
         opts.lm,
     )?;
     Some((ltc_of(&r.theta)?, r.e, r.passes))
