@@ -211,6 +211,27 @@ fn every_model_is_fitted_as_itself() {
                 );
             }
         }
+        // (2b) every bilinear lookup between texels is an LTC: the stored (m00, m20, m02, m22)
+        // interpolated at 1/4, 1/2, 3/4 of every cell, in both directions, rebuild an
+        // invertible M⁻¹ (what the fit's sign boxes, b ≥ 0 ≥ d or b ≤ 0 ≤ d, are for)
+        for j in 0..SIDE - 1 {
+            for i in 0..SIDE - 1 {
+                let h = |di: usize, dj: usize| texels[(j + dj) * SIDE + i + di].ltc.heitz_texel();
+                for u in [0.25, 0.5, 0.75] {
+                    for w in [0.25, 0.5, 0.75] {
+                        let t: [f64; 4] = std::array::from_fn(|k| {
+                            (1.0 - u) * (1.0 - w) * h(0, 0)[k]
+                                + u * (1.0 - w) * h(1, 0)[k]
+                                + (1.0 - u) * w * h(0, 1)[k]
+                                + u * w * h(1, 1)[k]
+                        });
+                        let l = Ltc::from_heitz_texel(t)
+                            .unwrap_or_else(|e| panic!("{name}: lookup in cell ({i}, {j}): {e}"));
+                        assert!(l.condition_number().is_finite(), "{name}: {t:?}");
+                    }
+                }
+            }
+        }
         let err = lit_error(&texels, &s);
         eprintln!(
             "{name}: lit error (sum |X - Y| / sum Y) worst texel {:.4}, mean {:.4}; largest cond*alpha*mu {worst_cond:.3e}",
