@@ -83,6 +83,7 @@ fn methods(c: &mut Criterion) {
     let brdf = Brdf {
         specular: Some(ggx.clone()),
         diffuse_weight: 0.0,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     };
     let mut g = c.benchmark_group("method");
     g.bench_function("albedo E: adaptive G7/K15 (table::albedo)", |b| {

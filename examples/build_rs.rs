@@ -60,6 +60,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: vec![

@@ -32,6 +32,7 @@ fn ggx(alpha: f64) -> Result<Brdf, String> {
             fresnel: Fresnel::None,
         }),
         diffuse_weight: 0.0,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     })
 }
 

@@ -96,5 +96,6 @@ fn brdf(alpha: f64, m: Masking) -> Brdf {
             fresnel: Fresnel::None,
         }),
         diffuse_weight: 0.0,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     }
 }

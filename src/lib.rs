@@ -15,7 +15,7 @@
 //!     name: "e".into(),
 //!     kind: TableKind::Albedo,
 //!     model: ModelSpec { ndf: Some(NdfKind::Ggx), masking: Masking::SmithHeightCorrelated,
-//!                        fresnel: Fresnel::None, diffuse_weight: 0.0, classic: None },
+//!                        fresnel: Fresnel::None, diffuse_weight: 0.0, diffuse_model: Default::default(), classic: None },
 //!     axes: vec![
 //!         Axis { name: "cos_theta_v".into(), quantity: Quantity::Cosine, size: 4,
 //!                range: [0.0, 1.0], convention: Convention::Centers, warp: Default::default(), clamp: None },

@@ -579,6 +579,7 @@ pub fn fit_model_lambert(
             ..specular(ndf, masking, alpha)
         }),
         diffuse_weight: kd,
+        diffuse: crate::model::DiffuseLobe::Lambert,
     };
     let (mut sw, mut swy2, mut max_abs) = (0.0, 0.0, 0.0f64);
     for nd in &nodes {

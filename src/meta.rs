@@ -55,6 +55,10 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(c) = &m.classic {
         v["model"]["classic"] = json!(c);
     }
+    // (only when not Lambert's, so that every other table keeps its hash)
+    if m.diffuse_model != crate::model::DiffuseModel::Lambert {
+        v["model"]["diffuse_model"] = json!(m.diffuse_model.name());
+    }
     // (only when set, so that tables without it keep their hash)
     if let Some(a) = table.accept_error_estimate {
         v["accept_error_estimate"] = json!(a);
@@ -299,7 +303,7 @@ fn model_json(spec: &TableSpec) -> Value {
         "ndf": ndf,
         "masking": {"name": m.masking.name(), "formula": m.masking.formula(), "source": m.masking.source()},
         "fresnel": {"name": m.fresnel.name(), "formula": m.fresnel.formula(), "parameters": m.fresnel},
-        "diffuse": {"name": if m.diffuse_weight > 0.0 { "lambert" } else { "none" }, "weight": m.diffuse_weight, "formula": "f_d = w_d / pi"},
+        "diffuse": {"name": if m.diffuse_weight > 0.0 { m.diffuse_model.name() } else { "none" }, "weight": m.diffuse_weight, "formula": m.diffuse_model.formula()},
     });
     if spec.kind == TableKind::AlbedoFresnel || spec.kind.is_dielectric() {
         let z = spec.axes.len() - 1;
@@ -632,7 +636,11 @@ pub fn model_summary(spec: &TableSpec) -> String {
         m.fresnel.name()
     );
     if m.diffuse_weight > 0.0 {
-        s.push_str(&format!(" + lambert {}", m.diffuse_weight));
+        s.push_str(&format!(
+            " + {} {}",
+            m.diffuse_model.name(),
+            m.diffuse_weight
+        ));
     }
     s
 }
@@ -684,6 +692,17 @@ fn ltc_section(table: &PresetTable, fit: Option<&Lut>) -> Value {
             "bounds": "b >= 0 >= d, so that every bilinear lookup between texels is invertible",
         },
     });
+    // (only when set, so that GGX tables keep their bytes)
+    let opts = crate::table::ltc::fit_options(spec);
+    if opts.retro {
+        v["fit"]["bounds"] = json!("b <= 0 <= d (the lobe leans toward the view, as sheen scatters back), so that every bilinear lookup between texels is invertible");
+    }
+    if opts.peak_floor > 0.0 {
+        v["fit"]["floor"] = json!(format!(
+            "the relative residuals' floor, lit_rms's included: max({:e}, {} * the normalized lobe's peak density) per texel (src/table/ltc.rs, fit_options: an LTC cannot follow this lobe's tails or hole relatively)",
+            opts.floor, opts.peak_floor
+        ));
+    }
     // (with the preset's `channels` the texture's components are those, not ltc.channels:
     // the sidecar's `channels` say what each holds, and no rebuild is spelled out here)
     if table.channels.is_none() && chans.iter().any(|c| c.is_matrix()) {

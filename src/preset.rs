@@ -561,6 +561,8 @@ struct RawModel {
     #[serde(default)]
     diffuse: Option<f64>,
     #[serde(default)]
+    diffuse_model: Option<crate::model::DiffuseModel>,
+    #[serde(default)]
     classic: Option<crate::table::classic::ClassicModel>,
 }
 
@@ -1123,6 +1125,7 @@ fn table_spec(
             masking: Some(Masking::VGroove),
             fresnel: None,
             diffuse: None,
+            diffuse_model: None,
             classic: None,
         },
         // (a closed form of geometry: no BRDF)
@@ -1131,6 +1134,7 @@ fn table_spec(
             masking: Some(Masking::None),
             fresnel: None,
             diffuse: None,
+            diffuse_model: None,
             classic: None,
         },
         None => {
@@ -1170,6 +1174,7 @@ fn table_spec(
         masking,
         fresnel: model.fresnel.unwrap_or(Fresnel::None),
         diffuse_weight: model.diffuse.unwrap_or(0.0),
+        diffuse_model: model.diffuse_model.unwrap_or_default(),
         classic: model.classic,
     };
     let mut out_axes = Vec::new();

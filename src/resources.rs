@@ -266,10 +266,25 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // 2026-12-02), i.e. ~3,700 evaluations' worth at 100 ns, plus the norm and Fresnel
         // integrals (two albedos); without matrix channels the integrals alone; the sphere
         // table is a closed form
+        // Per model, the 64² table on Heitz's grid on 1 thread (fit, norm and Fresnel;
+        // `examples/ltc_models_check.rs --heitz 64` with RAYON_NUM_THREADS=1, 2026-12-02, a
+        // loaded machine): GGX 0.8–1.0 s, Lambert 0.84, Burley 3.6, Beckmann 4.4, Charlie +
+        // Ashikhmin 1.4, Charlie + Conty–Kulla 7.2: the fit scaled by 4, 5, 2 and 8 (their
+        // BRDFs cost more per evaluation, and the optimizer takes more passes)
         K::Ltc => {
+            use crate::model::{DiffuseModel, Masking, NdfKind};
             let chans = crate::table::ltc::ltc_channels(spec);
+            let m = &spec.model;
+            let scale = match (m.ndf, m.masking) {
+                (Some(NdfKind::Ggx), _) => 1.0,
+                (Some(NdfKind::Charlie), Masking::ContyKulla | Masking::ContyKullaSoftened) => 8.0,
+                (Some(NdfKind::Charlie), _) => 2.0,
+                (Some(_), _) => 5.0,
+                (None, _) if m.diffuse_model == DiffuseModel::Burley => 4.0,
+                (None, _) => 1.0,
+            };
             let fit = if chans.iter().any(|c| c.is_matrix()) {
-                4_000.0
+                4_000.0 * scale
             } else {
                 0.0
             };

@@ -51,6 +51,7 @@ fn brdf(kind: NdfKind, alpha: f64, masking: Masking, fresnel: Fresnel, diffuse: 
     Brdf {
         specular: Some(specular(kind, alpha, masking, fresnel)),
         diffuse_weight: diffuse,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     }
 }
 
@@ -84,6 +85,7 @@ fn model(ndf: Option<NdfKind>, masking: Masking) -> ModelSpec {
         masking,
         fresnel: Fresnel::None,
         diffuse_weight: 0.0,
+        diffuse_model: brdfbake::model::DiffuseModel::Lambert,
         classic: None,
     }
 }
@@ -574,6 +576,7 @@ fn analytic_albedo_values() {
     let lambert = Brdf {
         specular: None,
         diffuse_weight: 1.0,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     };
     let mut failures = Vec::new();
     let mut check = |name: String, v: f64, est: f64, exact: f64| {

@@ -33,6 +33,7 @@ fn g1_spec(cos: Axis) -> TableSpec {
             masking: Masking::SmithSeparable,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: vec![
@@ -410,6 +411,7 @@ fn clamped_rows_are_computed_once_and_hold_the_clamped_value() {
                 masking,
                 fresnel: Fresnel::None,
                 diffuse_weight: 0.0,
+                diffuse_model: brdfbake::model::DiffuseModel::Lambert,
                 classic: None,
             },
             axes: vec![
@@ -464,6 +466,7 @@ fn clamped_rows_are_computed_once_and_hold_the_clamped_value() {
                 let b = brdfbake::model::Brdf {
                     specular: Some(s),
                     diffuse_weight: 0.0,
+                    diffuse: brdfbake::model::DiffuseLobe::Lambert,
                 };
                 let (v, e, _) = brdfbake::table::albedo::directional_albedo_adaptive(&b, mu, 1e-10);
                 (v.to_vec(), e[0])

@@ -263,6 +263,7 @@ fn refused_texel_falls_back_to_the_laws_integrator() {
             masking: Masking::None,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: Some(c),
         },
         axes: vec![

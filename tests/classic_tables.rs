@@ -39,6 +39,7 @@ fn spec(kind: TableKind, c: ClassicModel, axes: Vec<Axis>, tol: f64) -> TableSpe
             masking: Masking::None,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: Some(c),
         },
         axes,

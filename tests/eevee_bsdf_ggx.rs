@@ -490,6 +490,7 @@ fn above_one_the_reflected_channels_are_the_brdf_split_sum() {
         masking: Masking::SmithSeparable,
         fresnel: Fresnel::None,
         diffuse_weight: 0.0,
+        diffuse_model: brdfbake::model::DiffuseModel::Lambert,
         classic: None,
     };
     let mus = Axis::new(

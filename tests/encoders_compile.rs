@@ -58,6 +58,7 @@ fn spec(name: &str, kind: TableKind, axes: Vec<Axis>) -> TableSpec {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes,

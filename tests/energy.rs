@@ -41,6 +41,7 @@ fn spec(kind: TableKind, masking: Masking, fresnel: Fresnel, axes: Vec<Axis>) ->
             masking,
             fresnel,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes,

@@ -42,6 +42,7 @@ fn karis(masking: Masking, nx: usize, ny: usize) -> TableSpec {
             masking,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: vec![
@@ -207,6 +208,7 @@ fn albedo_of_schlick_ggx_matches_the_reference() {
                     masking,
                     fresnel,
                     diffuse_weight: 0.0,
+                    diffuse_model: brdfbake::model::DiffuseModel::Lambert,
                     classic: None,
                 },
                 axes: vec![

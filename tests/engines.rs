@@ -628,6 +628,7 @@ fn gltf_lut_sheen_e_is_a_smoothed_enterprise_pbr_table() {
                 fresnel: brdfbake::model::Fresnel::None,
             }),
             diffuse_weight: 0.0,
+            diffuse: brdfbake::model::DiffuseLobe::Lambert,
         };
         brdfbake::table::albedo::directional_albedo(&brdf, mu, 1e-8).0[0]
     };

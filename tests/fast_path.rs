@@ -78,6 +78,7 @@ fn filament_dfg_table_matches_adaptive_at_every_texel() {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: axes.clone(),

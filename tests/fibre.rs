@@ -97,6 +97,7 @@ fn albedo_fresnel_fibre_matches_per_texel() {
             masking,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         };
         for alpha in [0.03, 0.4, 1.0] {
@@ -148,6 +149,7 @@ fn albedo_fresnel_fibre_outside_its_scope_is_per_texel() {
             masking,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         };
         let fib = directional_albedo_fresnels(&model.brdf(0.3).unwrap(), &fresnels, 0.6, tol);
@@ -184,6 +186,7 @@ fn table(
             masking,
             fresnel,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: vec![

@@ -27,6 +27,7 @@ fn microfacet(kind: NdfKind, alpha: f64) -> Microfacet {
                 fresnel: Fresnel::None,
             }),
             diffuse_weight: 0.0,
+            diffuse: brdfbake::model::DiffuseLobe::Lambert,
         },
         label: format!("{kind:?} {alpha}"),
     }

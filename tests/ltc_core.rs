@@ -19,6 +19,7 @@ fn ggx(alpha: f64) -> Result<Brdf, String> {
             fresnel: Fresnel::None,
         }),
         diffuse_weight: 0.0,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     })
 }
 
@@ -217,6 +218,7 @@ fn norm_is_brdfbakes_albedo() {
             masking: Masking::SmithHeightCorrelated,
             fresnel: Fresnel::None,
             diffuse_weight: 0.0,
+            diffuse_model: brdfbake::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes: axes.clone(),

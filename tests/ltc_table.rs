@@ -76,6 +76,7 @@ fn ggx(alpha: f64) -> brdfbake::model::Brdf {
         masking: brdfbake::model::Masking::SmithHeightCorrelated,
         fresnel: brdfbake::model::Fresnel::None,
         diffuse_weight: 0.0,
+        diffuse_model: brdfbake::model::DiffuseModel::Lambert,
         classic: None,
     };
     spec.brdf(alpha).unwrap()

@@ -21,6 +21,7 @@ fn model(c: usize) -> Brdf {
             fresnel: Fresnel::Schlick { f0 },
         }),
         diffuse_weight: kd,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     }
 }
 

@@ -21,6 +21,7 @@ fn model_with(c: usize, masking: Masking) -> Brdf {
             fresnel: Fresnel::Schlick { f0 },
         }),
         diffuse_weight: kd,
+        diffuse: brdfbake::model::DiffuseLobe::Lambert,
     }
 }
 

@@ -47,6 +47,7 @@ fn model(ndf: NdfKind, masking: Masking, fresnel: Fresnel, diffuse: f64) -> Mode
         masking,
         fresnel,
         diffuse_weight: diffuse,
+        diffuse_model: brdfbake::model::DiffuseModel::Lambert,
         classic: None,
     }
 }

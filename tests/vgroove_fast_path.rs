@@ -117,6 +117,7 @@ fn cook_torrance_albedo_takes_the_fast_path_and_matches_reference() {
         let brdf = Brdf {
             specular: Some(specular(NdfKind::Beckmann, m, fresnel)),
             diffuse_weight: 0.0,
+            diffuse: brdfbake::model::DiffuseLobe::Lambert,
         };
         let (v, e, _) = directional_albedo(&brdf, mu, LIB_TOL);
         if let Ok(r) = &results[k] {
@@ -215,6 +216,7 @@ fn other_vgroove_albedos_match_reference() {
             let brdf = Brdf {
                 specular: Some(specular(kind, alpha, Fresnel::Schlick { f0: 0.04 })),
                 diffuse_weight: 0.0,
+                diffuse: brdfbake::model::DiffuseLobe::Lambert,
             };
             let (v, e, _) = directional_albedo(&brdf, mu, LIB_TOL);
             let (want, ref_err) =

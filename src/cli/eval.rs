@@ -297,6 +297,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             masking,
             fresnel,
             diffuse_weight: 0.0,
+            diffuse_model: crate::model::DiffuseModel::Lambert,
             classic: None,
         },
         axes,

@@ -334,6 +334,7 @@ pub fn parse_model(spec: &str) -> Result<Vec<Box<dyn Reflectance>>, CliError> {
                         fresnel,
                     }),
                     diffuse_weight: kd,
+                    diffuse: crate::model::DiffuseLobe::Lambert,
                 },
                 label: format!(
                     "{name}(alpha={alpha}{f0}, kd={kd}, masking={})",

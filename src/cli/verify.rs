@@ -90,6 +90,29 @@ fn recompute_time(t: &crate::preset::PresetTable, n: usize) -> crate::resources:
     }
 }
 
+/// The estimated cost of the refit that checks the matrix channels of `checked` texels of
+/// an `ltc` table ([`refit_texels`]): each checked texel's whole roughness line is refitted
+/// as the bake fits it, so at most `min(checked, lines)` of the table's lines, each its
+/// share of the bake's estimate ([`crate::resources::estimate_table_time`], which counts the
+/// fit); nothing for a table without matrix channels or of another kind.
+fn refit_time(t: &crate::preset::PresetTable, checked: usize) -> crate::resources::TimeEstimate {
+    let refits = t.spec.kind == crate::table::TableKind::Ltc
+        && crate::table::ltc::ltc_channels(&t.spec)
+            .iter()
+            .any(|c| c.is_matrix());
+    let lines = t.spec.axes.get(1).map_or(1, |a| a.size).max(1) as f64;
+    let k = if refits {
+        (checked as f64).min(lines) / lines
+    } else {
+        0.0
+    };
+    let e = crate::resources::estimate_table_time(t);
+    crate::resources::TimeEstimate {
+        evaluations: e.evaluations * k,
+        cpu_seconds: e.cpu_seconds * k,
+    }
+}
+
 /// How many texels [`sample_texels`] (or `--all`) checks in a table of `dims`.
 fn checked_count(dims: [usize; 3], all: bool) -> usize {
     let n = dims[0] * dims[1] * dims[2];
@@ -342,10 +365,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         })?;
         // the time, now that the table is known
         // (every checked texel and the middle of its cell)
-        let time = recompute_time(
-            &table,
-            2 * checked_count([lut.dim(0), lut.dim(1), lut.dim(2)], a.all),
-        );
+        let checked = checked_count([lut.dim(0), lut.dim(1), lut.dim(2)], a.all);
+        let time = recompute_time(&table, 2 * checked) + refit_time(&table, checked);
         crate::resources::check_time_of(
             "this verify",
             "verify fewer texels (without --all)",
@@ -387,7 +408,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         let mut time = crate::resources::estimate_time(&presets);
         for t in presets.iter().flat_map(|p| &p.tables) {
             let dims = [0, 1, 2].map(|k| t.spec.axes.get(k).map_or(1, |x| x.size));
-            time = time + recompute_time(t, 2 * checked_count(dims, a.all));
+            let checked = checked_count(dims, a.all);
+            time = time + recompute_time(t, 2 * checked) + refit_time(t, checked);
         }
         let est = crate::resources::estimate(&presets, Some(&[]));
         let d = a.guards.admit(&super::guards::Work {
@@ -654,4 +676,34 @@ fn json_schema(p: &Path) -> Option<String> {
     let b = crate::input::read_regular(p, 64 << 20, "a .json file").ok()?;
     let v: serde_json::Value = serde_json::from_slice(&b).ok()?;
     v.get("schema")?.as_str().map(str::to_string)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(channels: &str) -> crate::preset::PresetTable {
+        let text = format!(
+            r#"{{ "schema": "brdfbake.preset/1", "tables": [ {{ "name": "t", "kind": "ltc",
+            "model": {{ "ndf": "ggx", "masking": "smith-height-correlated" }},
+            "ltc": {{ "channels": {channels} }},
+            "axes": {{ "cos_theta_v": {{ "size": 16, "range": [0.1, 1] }},
+                      "roughness": {{ "size": 8, "range": [0.1, 1], "quantity": "perceptual" }} }},
+            "formats": ["exr"] }} ] }}"#
+        );
+        crate::preset::parse(&text, "test", "t").unwrap().tables[0].clone()
+    }
+
+    /// The refit of an `ltc` table's matrix channels costs the checked texels' roughness
+    /// lines (at most all 8 of them: the whole bake's estimate), and nothing without them.
+    #[test]
+    fn refit_is_in_the_time_estimate() {
+        let m = table(r#"["m00", "m20", "m02", "m22"]"#);
+        let bake = crate::resources::estimate_table_time(&m).cpu_seconds;
+        assert!(bake > 0.0);
+        let at = |t: &crate::preset::PresetTable, n| refit_time(t, n).cpu_seconds;
+        assert!((at(&m, 2) - bake * 2.0 / 8.0).abs() <= 1e-12 * bake);
+        assert!((at(&m, 91) - bake).abs() <= 1e-12 * bake);
+        assert_eq!(at(&table(r#"["norm", "fresnel"]"#), 91), 0.0);
+    }
 }

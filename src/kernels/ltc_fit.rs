@@ -28,6 +28,13 @@
 //!
 //! The residual is the lit value's relative error itself: unbounded above (a light lit
 //! 100× too bright is as wrong as the measure says) and at most 1 below (an unlit light).
+//! That asks the LTC to follow the lobe down to the floor, which an LTC can for GGX (both
+//! fall off as a power of the angle from their axis) but not for a lobe that falls faster
+//! or vanishes inside (Beckmann's Gaussian tails, Charlie sheen's empty centre): there
+//! every direction costs `X/(εΩ)` and the cheapest LTC was a razor at the parameter box.
+//! For those the table raises the floor to the lobe's peak density
+//! ([`LtcFitOptions::peak_floor`]; `table::ltc::fit_options` says which lobes and why),
+//! which makes the residual an absolute error in units of the peak away from it.
 //! The paper's own measure, `∫|f cos − norm·D|³` (Heitz et al. 2016, §4, after its
 //! Monte Carlo estimate in `fit/fitLTC.cpp`), weighs the peak alone; it is reported
 //! ([`FitReport::l3`]) on the same rule, not minimized.
@@ -92,6 +99,13 @@ pub struct LtcFitOptions {
     /// The floor ε of the relative residual `(X − Y)/(Y + εΩ)`, a density per steradian of
     /// the normalized lobe.
     pub floor: f64,
+    /// The floor relative to the lobe's peak: a texel's floor is
+    /// `max(floor, peak_floor·y_max)`, `y_max` the normalized lobe's largest value on the
+    /// fit's rule (0: the absolute floor alone).
+    pub peak_floor: f64,
+    /// The lobe leans toward the view (a sheen lobe's back-scatter): the box's signs are
+    /// `b ≤ 0 ≤ d` instead of `b ≥ 0 ≥ d` (see the bounds' doc).
+    pub retro: bool,
     /// The optimizer's settings.
     pub lm: LmSettings,
 }
@@ -106,6 +120,8 @@ impl Default for LtcFitOptions {
             energy_weight: 10.0,
             probe_weight: 1.0,
             floor: 1e-9,
+            peak_floor: 0.0,
+            retro: false,
             lm: LmSettings::default(),
         }
     }
@@ -246,6 +262,8 @@ impl Target {
             .zip(&y)
             .map(|(&dw, &yk)| opts.point_weight * dw / (2.0 * PI) + opts.energy_weight * dw * yk)
             .collect();
+        let y_max = y.iter().copied().fold(0.0, f64::max);
+        let floor = opts.floor.max(opts.peak_floor * y_max);
         let probes = if opts.probe_weight > 0.0 {
             // the BRDF's peak among the nodes
             let peak = y
@@ -253,7 +271,7 @@ impl Target {
                 .enumerate()
                 .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
                 .map(|(k, _)| rule.dirs[k]);
-            probes(v, fcos, norm, peak, opts.floor)
+            probes(v, fcos, norm, peak, floor)
         } else {
             Vec::new()
         };
@@ -263,7 +281,7 @@ impl Target {
             w,
             probes,
             probe_weight: opts.probe_weight,
-            floor: opts.floor,
+            floor,
             free_d: opts.free_d,
         }
     }
@@ -277,16 +295,27 @@ impl Target {
 /// `b ≥ 0 ≥ d` at every texel every interpolated `M⁻¹` has `det/c = (a + b·|d|)/c² > 0`
 /// (each factor keeps its sign under convex combinations); with mixed signs two valid
 /// neighbours can interpolate to a singular matrix (seen: thousands of lookups in a 64²
-/// table fitted without them).
+/// table fitted without them). A lobe that leans toward the view ([`LtcFitOptions::retro`]:
+/// Charlie sheen, whose fitted axis lies on the view's side, `b < 0`, and whose support
+/// tilts the other way, `d > 0`) takes the mirror box, `b ≤ 0 ≤ d` (`b/a ∈ [−10⁶, 0]`,
+/// `d ∈ [0, 20]`), where `det/c = (a + |b|·d)/c² > 0` holds between texels all the same.
 const LN_MIN: f64 = -13.815510557964274; // ln 1e-6
 const LN_MAX: f64 = 20.72326583694641; // ln 1e9
 const TILT_MAX: f64 = 1e6;
 const D_MIN: f64 = -20.0;
 
-/// The box as `(lower, upper)` bounds of θ; `d` is held at 0 without `free_d`.
-fn bounds(free_d: bool) -> ([f64; P], [f64; P]) {
+/// The box as `(lower, upper)` bounds of θ; `d` is held at 0 without `free_d`; the signs
+/// of `b` and `d` swapped with `retro`.
+fn bounds(free_d: bool, retro: bool) -> ([f64; P], [f64; P]) {
     let dlo = if free_d { D_MIN } else { 0.0 };
-    ([LN_MIN, 0.0, LN_MIN, dlo], [LN_MAX, TILT_MAX, LN_MAX, 0.0])
+    if retro {
+        (
+            [LN_MIN, -TILT_MAX, LN_MIN, 0.0],
+            [LN_MAX, 0.0, LN_MAX, -dlo],
+        )
+    } else {
+        ([LN_MIN, 0.0, LN_MIN, dlo], [LN_MAX, TILT_MAX, LN_MAX, 0.0])
+    }
 }
 
 /// `θ → (a, b, c, d)`; `None` where that is not an [`Ltc`].
@@ -363,7 +392,7 @@ fn fit_target(tg: &Target, start: &Ltc, opts: &LtcFitOptions) -> Option<(Ltc, f6
     let r = minimize(
         |t: &[f64; P]| normal_eq(tg, t).map(|x| x.0),
         theta_of(&s0),
-        bounds(opts.free_d),
+        bounds(opts.free_d, opts.retro),
         opts.lm,
     )?;
     Some((ltc_of(&r.theta)?, r.e, r.passes))
@@ -521,8 +550,10 @@ pub fn objective_at(
 
 /// `f cos` of a brdfbake BRDF at a half-vector node.
 pub fn brdf_fcos(brdf: &Brdf) -> impl Fn(&Node) -> f64 + '_ {
-    let wd = brdf.diffuse_weight / PI;
-    move |n: &Node| brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n)) + wd * n.n_dot_l
+    move |n: &Node| {
+        brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n))
+            + brdf.diffuse_cosine_weighted(n)
+    }
 }
 
 /// The lobe warp of a BRDF (its specular lobe's; a Lambertian one is a unit-width lobe).
@@ -586,14 +617,15 @@ pub fn fit_texel(
         )));
     }
     let nf = norm_and_fresnel(brdf, mu, opts.tolerance);
-    if nf.norm == 0.0 {
-        // nothing is reflected (a sheen lobe of tiny α seen from above: its albedo underflows):
-        // every lit value is 0 whatever the matrix; the texel keeps the clamped cosine, which
-        // interpolates with its neighbours as well as any
-        return Ok(LtcTexel {
-            norm: 0.0,
-            ..LtcTexel::unfitted(nf)
-        });
+    if nf.norm <= opts.tolerance {
+        // nothing is reflected, to the table's tolerance (a sheen lobe of tiny α seen from
+        // above: its albedo is 2·10⁻¹⁵⁶ at α = 10⁻³, underflows to 0 or comes out as rounding
+        // below 0, −9·10⁻¹³ for Conty–Kulla's at α = 10⁻⁵): every lit value, at most `norm`,
+        // is within the tolerance of 0 whatever the matrix, and a fit to such a lobe ran
+        // into the parameter box (cond 10⁶ at α = 10⁻³). The texel keeps the clamped cosine,
+        // which interpolates with its neighbours as well as any, and the norm channel
+        // brdfbake's albedo as it is
+        return Ok(LtcTexel::unfitted(nf));
     }
     let fcos = brdf_fcos(brdf);
     let (ltc, fit) = fit_ltc(&fcos, mu, brdf_warp(brdf), nf.norm, start, shape, opts)?;

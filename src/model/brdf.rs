@@ -1,7 +1,9 @@
-//! BRDF composition: a microfacet specular lobe plus an optional Lambertian diffuse lobe,
-//! `f = w_s·D·G·F/(4 (n·l)(n·v)) + w_d/π` — the modern form. The lecture's Cook–Torrance
+//! BRDF composition: a microfacet specular lobe plus an optional diffuse lobe,
+//! `f = w_s·D·G·F/(4 (n·l)(n·v)) + (w_d/π)·k` — the modern form, with `k` = 1 (Lambert) or
+//! Burley's factor ([`DiffuseLobe`]). The lecture's Cook–Torrance
 //! `k_d/π + k_s·(1/π)·F·D_CT·G/((n·l)(n·v))` is the same BRDF with D = (4/π)·D_CT.
 
+use super::diffuse::DiffuseLobe;
 use super::fresnel::Fresnel;
 use super::masking::Masking;
 use super::ndf::Ndf;
@@ -89,8 +91,10 @@ impl Specular {
 #[derive(Clone, Debug)]
 pub struct Brdf {
     pub specular: Option<Specular>,
-    /// Weight of the Lambertian lobe `w_d/π` (0: none).
+    /// Weight `w_d` of the diffuse lobe `(w_d/π)·k` (0: none).
     pub diffuse_weight: f64,
+    /// The diffuse lobe's shape `k`: Lambert (1) or Burley's.
+    pub diffuse: DiffuseLobe,
 }
 
 impl Brdf {
@@ -99,7 +103,26 @@ impl Brdf {
             return 0.0;
         }
         let s = self.specular.as_ref().map_or(0.0, |s| s.eval(v, l));
-        s + self.diffuse_weight / PI
+        match self.diffuse {
+            DiffuseLobe::Lambert => s + self.diffuse_weight / PI,
+            d => {
+                // v·h with h = (v + l)/|v + l|: v·h = √((1 + v·l)/2)
+                let vl = v[0] * l[0] + v[1] * l[1] + v[2] * l[2];
+                let vh = (0.5 * (1.0 + vl)).max(0.0).sqrt();
+                s + self.diffuse_weight / PI * d.factor(v[2], l[2], vh)
+            }
+        }
+    }
+
+    /// The diffuse lobe's `f_d·(n·l)` at a half-vector node: `(w_d/π)·(n·l)` for Lambert
+    /// (this expression, so that the integrands keep their bits), times Burley's factor.
+    #[inline]
+    pub fn diffuse_cosine_weighted(&self, n: &Node) -> f64 {
+        let wd = self.diffuse_weight / PI;
+        match self.diffuse {
+            DiffuseLobe::Lambert => wd * n.n_dot_l,
+            d => wd * n.n_dot_l * d.factor(n.n_dot_v, n.n_dot_l, n.v_dot_h),
+        }
     }
 }
 
@@ -139,6 +162,7 @@ mod tests {
                             fresnel,
                         }),
                         diffuse_weight: 0.3,
+                        diffuse: crate::model::DiffuseLobe::Lambert,
                     };
                     for &(tv, pv, tl, pl) in &[
                         (0.3, 0.0, 1.1, 2.0),

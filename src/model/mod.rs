@@ -3,12 +3,14 @@
 
 pub mod brdf;
 pub mod classic;
+pub mod diffuse;
 pub mod fresnel;
 pub mod masking;
 pub mod ndf;
 pub mod roughness;
 
 pub use brdf::{Brdf, Specular};
+pub use diffuse::{DiffuseLobe, DiffuseModel};
 pub use fresnel::Fresnel;
 pub use masking::Masking;
 pub use ndf::{Ndf, NdfKind};

@@ -164,6 +164,7 @@ pub fn adaptive(kind: Kind, tol: f64) -> (Vec<f64>, u64) {
             let b = Brdf {
                 specular: Some(ggx()),
                 diffuse_weight: 0.0,
+                diffuse: crate::model::DiffuseLobe::Lambert,
             };
             let (v, _, n) = directional_albedo(&b, MU, tol);
             (v.to_vec(), n)
@@ -180,6 +181,7 @@ pub fn adaptive(kind: Kind, tol: f64) -> (Vec<f64>, u64) {
             let b = Brdf {
                 specular: Some(ggx()),
                 diffuse_weight: 0.0,
+                diffuse: crate::model::DiffuseLobe::Lambert,
             };
             let (v, _, n) = average_albedo(&b, tol);
             (vec![v], n)

@@ -14,7 +14,6 @@ use crate::kernels::vgroove::{beckmann_vgroove_albedo, integrate_over_l_kinked, 
 use crate::model::{Brdf, Masking};
 use crate::quadrature::budget::{with_budget, INTEGRAL_EVAL_BUDGET};
 use crate::quadrature::{integrate, Tolerance};
-use std::f64::consts::PI;
 
 /// E(μ) for one BRDF, to absolute tolerance `tol`. Returns `([value], [error], evaluations)`.
 ///
@@ -65,9 +64,8 @@ fn directional_albedo_in(
                 Err(n) => spent = n,
             }
         }
-        let wd = brdf.diffuse_weight / PI;
         let mut e = integrate_over_l_kinked(mu, s.warp(), tail, tol, |n| {
-            [s.cosine_weighted(n) + wd * n.n_dot_l]
+            [s.cosine_weighted(n) + brdf.diffuse_cosine_weighted(n)]
         });
         e.evals += spent;
         return (e.value, e.error, e.evals);
@@ -126,10 +124,9 @@ fn directional_albedo_in(
             }
         }
     }
-    let wd = brdf.diffuse_weight / PI;
     let e = integrate_over_l_smooth(mu, brdf.specular.as_ref().map(|s| &s.ndf), tol, |n| {
         let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));
-        [s + wd * n.n_dot_l]
+        [s + brdf.diffuse_cosine_weighted(n)]
     });
     (e.value, e.error, e.evals + spent)
 }
@@ -179,10 +176,9 @@ pub fn directional_albedo_adaptive(brdf: &Brdf, mu: f64, tol: f64) -> ([f64; 1],
         .specular
         .as_ref()
         .map_or(LobeWarp::TanOverScale(1.0), |s| s.warp());
-    let wd = brdf.diffuse_weight / PI;
     let e = integrate_over_l(mu, warp, tol, |n| {
         let s = brdf.specular.as_ref().map_or(0.0, |s| s.cosine_weighted(n));
-        [s + wd * n.n_dot_l]
+        [s + brdf.diffuse_cosine_weighted(n)]
     });
     (e.value, e.error, e.evals)
 }

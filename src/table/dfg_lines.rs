@@ -922,6 +922,7 @@ mod tests {
                 masking: Masking::SmithHeightCorrelated,
                 fresnel: Fresnel::None,
                 diffuse_weight: 0.0,
+                diffuse_model: crate::model::DiffuseModel::Lambert,
                 classic: None,
             },
             axes: vec![

@@ -41,7 +41,7 @@ use crate::kernels::ltc_fit::{fit_line, norm_and_fresnel, FitReport, LtcFitOptio
 use crate::kernels::ltc_polygon::{clipped_sphere_table, ltc_polygon_integral};
 use crate::lut::{Axis, Channel};
 use crate::model::ltc::Ltc;
-use crate::model::Fresnel;
+use crate::model::{Fresnel, NdfKind};
 use rayon::prelude::*;
 
 /// The smallest view cosine an `ltc` table accepts: 10⁻⁴ (θ = 89.994°). The fit's
@@ -249,13 +249,45 @@ pub(crate) struct Baked {
     pub stopped: bool,
 }
 
-/// The fit's settings for a table: the defaults at the table's tolerance.
+/// The fit's settings for a table: the defaults at the table's tolerance, with the floor
+/// relative to the lobe's peak ([`LtcFitOptions::peak_floor`]) at [`PEAK_FLOOR`] for
+/// specular lobes other than GGX's.
+///
+/// Why by NDF: the fit's relative residual `(X − Y)/(Y + εΩ)` asks the LTC to follow the
+/// BRDF to the floor ε. An LTC's density falls off away from its axis as a power of the
+/// angle (a clamped cosine seen through a linear map), as GGX's does (GGX's NDF is the
+/// distribution of normals of an ellipsoid, a linearly stretched hemisphere: Heitz 2018,
+/// "Sampling the GGX Distribution of Visible Normals"): there ε = 10⁻⁹ asks nothing an LTC
+/// cannot give, and GGX's fit (and every GGX table's bytes) stays as it is. Beckmann's and
+/// the Gaussian NDF's tails fall as `exp(−tan²θ/α²)`, Blinn–Phong's as a high power of
+/// `cos θ`, and Charlie's sheen lobe is 0 at its centre (`sin^(1/α)θ`): every LTC is
+/// orders of magnitude above such a lobe somewhere, each such direction costs `X/(εΩ)`,
+/// and with ε = 10⁻⁹ the cheapest LTC was a razor at the parameter box (lit error ~2,
+/// `tests/ltc_models.rs`). With the floor at the peak density the residual is the error in
+/// units of the peak, `≈ (X − Y)/y_max` away from the peak: an absolute-error fit, as the
+/// paper's own objective is (Heitz et al. 2016, §4: `∫|f cos − norm·D|³`).
 pub fn fit_options(spec: &TableSpec) -> LtcFitOptions {
+    let peak_floor = match spec.model.ndf {
+        Some(NdfKind::Ggx) | None => 0.0,
+        Some(_) => PEAK_FLOOR,
+    };
     LtcFitOptions {
         tolerance: spec.tolerance,
+        peak_floor,
+        // (sheen scatters back toward the view: `kernels/ltc_fit.rs`, the box's doc)
+        retro: spec.model.ndf == Some(NdfKind::Charlie),
         ..Default::default()
     }
 }
+
+/// The floor relative to the lobe's peak for lobes an LTC cannot follow relatively
+/// ([`fit_options`]): 1, the peak density itself. Measured on `tests/ltc_models.rs`' grid
+/// (`examples/ltc_models_check.rs --peak-floor K`, worst texel's lit error `Σ|X − Y|/ΣY`):
+/// Beckmann 0.33, 0.254, 0.265, 0.265, 0.268 at K = 10⁻², 0.03, 0.1, 1, 10 (0.75 at 10⁻³,
+/// cond·α·μ 2.2; 2.0 at 0, cond·α·μ 8·10⁷); Charlie (Ashikhmin, in its sign box) 0.41,
+/// 0.198, 0.202, 0.206 at 10⁻², 0.1, 1, 10 (1.48 at 0, cond·α·μ 1563). 1 is on the plateau
+/// for both and says what it does.
+pub const PEAK_FLOOR: f64 = 1.0;
 
 /// A roughness line's texels, or the texel where it failed and why.
 type LineResult = Result<Vec<LtcTexel>, (usize, String)>;

@@ -364,8 +364,10 @@ pub struct ModelSpec {
     pub ndf: Option<NdfKind>,
     pub masking: Masking,
     pub fresnel: Fresnel,
-    /// Weight of the Lambertian lobe w_d/π (0 = none).
+    /// Weight w_d of the diffuse lobe (0 = none).
     pub diffuse_weight: f64,
+    /// The diffuse lobe's model (the preset's `model.diffuse_model`; Lambert by default).
+    pub diffuse_model: crate::model::DiffuseModel,
     /// The classic analytic model of a `classic-albedo` / `classic-albedo-aniso` table
     /// (then `ndf` is `None`, `masking` none, `fresnel` none, `diffuse_weight` 0: the
     /// classic model carries its own weights); `None` for every other kind.
@@ -386,6 +388,7 @@ impl ModelSpec {
         Ok(Brdf {
             specular,
             diffuse_weight: self.diffuse_weight,
+            diffuse: self.diffuse_model.lobe(alpha),
         })
     }
 }

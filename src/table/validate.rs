@@ -281,6 +281,24 @@ impl TableSpec {
                 w = crate::numfmt::num(w)
             ));
         }
+        let dm = self.model.diffuse_model;
+        if dm != crate::model::DiffuseModel::Lambert {
+            // (the other kinds' diffuse paths — smooth limits, energy, fast paths — know
+            // Lambert's lobe only)
+            if kind != TableKind::Ltc {
+                return Err(format!(
+                    "model.diffuse_model {:?} applies to ltc tables only; a {} table takes \"lambert\" (the default)",
+                    dm.name(),
+                    kind.name()
+                ));
+            }
+            if w == 0.0 {
+                return Err(format!(
+                    "model.diffuse_model {:?} needs model.diffuse > 0 (the lobe's weight)",
+                    dm.name()
+                ));
+            }
+        }
         if !(self.tolerance.is_finite()
             && self.tolerance >= MIN_TOLERANCE
             && self.tolerance <= MAX_TOLERANCE)
