@@ -19,7 +19,9 @@
 //! * the reflected direction's horizon n·l_r = 0 (tan θh = `tan_theta_h_max`);
 //! * for η < 1, the critical angle v·h = c = √(1 − η²), where F has a square-root kink:
 //!   v·h = A cos(θh − ψ), A = √((n·v)² + sin²θv cos²φ), tan ψ = sin θv cos φ/(n·v), so
-//!   θh = ψ ± arccos(c/A); those panels are integrated in t with u = end ± (b − a) t²;
+//!   θh = ψ ± arccos(c/A); those panels are integrated in t with u = end ± (b − a) t², and
+//!   so is a panel with smooth ends that has such a point s within half its length outside
+//!   it, about s (`panels_reaching`, `NEAR_REACH`);
 //! * for η < 1, the transmitted direction's horizon n·l_t = 0, in closed form: the
 //!   refraction l_t = (c/η − cos θt) h − v/η (Walter eq. 40) gives v + η l_t = (c − η cos θt) h,
 //!   and c > η cos θt whenever η < 1, so h = s/|s| with s = v + η l_t. For a horizontal
