@@ -291,3 +291,135 @@ pub fn albedo_integrands<const N: usize>(
     }
     out
 }
+
+/// The `[R, T]` integrands of [`integrands_many`] for one relative index η < 1, with what
+/// depends only on η and the view computed once per integral (1/η, η² − 1, 1/(n·v)) and one
+/// square root shared by the Fresnel factor and the refraction: with
+/// g = √(η² − 1 + c²) (Cook & Torrance 1982, eq. 10), cos θt = √(1 − (1 − c²)/η²) = g/η, so
+/// n·l_t = (c/η − cos θt) n·h − n·v/η = ((c − g) n·h − n·v)/η (Walter et al. 2007, eq. 40),
+/// and F = ½(g − c)²(d² + n²)/((g + c)² d²) with n = c(g + c) − 1, d = c(g − c) + 1 =
+/// 1 − c² + cg > 0 ([`super::fresnel::dielectric_one_division`], whose form holds here
+/// too). Total internal reflection where η² − 1 + c² < 0: F = 1, no T. Equal to
+/// [`integrands_many`] to rounding (unit test below); for the η < 1 texels, each integrated
+/// alone ([`crate::table::dielectric`]).
+#[derive(Clone, Copy, Debug)]
+pub struct BelowOne {
+    inv_eta: f64,
+    eta2_m1: f64,
+    n_dot_v: f64,
+    inv_n_dot_v: f64,
+    g1v: f64,
+}
+
+impl BelowOne {
+    /// The per-integral constants of relative index `eta` (< 1) for a view with
+    /// n·v = `n_dot_v` (> 0) and G1(n·v) = `g1v`.
+    pub fn new(eta: f64, n_dot_v: f64, g1v: f64) -> BelowOne {
+        debug_assert!(eta < 1.0 && n_dot_v > 0.0);
+        BelowOne {
+            inv_eta: 1.0 / eta,
+            eta2_m1: (eta - 1.0) * (eta + 1.0),
+            n_dot_v,
+            inv_n_dot_v: 1.0 / n_dot_v,
+            g1v,
+        }
+    }
+
+    /// `[R, T]` per unit solid angle of h at micro-normal `m` (as [`integrands_many`]).
+    #[inline]
+    pub fn integrands(&self, ndf: &Ndf, smith: SmithForm, m: &MicroNormal) -> [f64; 2] {
+        let c = m.v_dot_h;
+        if c <= 0.0 {
+            return [0.0; 2];
+        }
+        let d = ndf.d_cs(m.n_dot_h, m.sin2_h);
+        if d == 0.0 {
+            return [0.0; 2];
+        }
+        let n_dot_lr = 2.0 * c * m.n_dot_h - self.n_dot_v;
+        let g1r = if n_dot_lr > 0.0 {
+            ndf.g1(n_dot_lr.min(1.0))
+        } else {
+            0.0
+        };
+        let w = d * c * self.inv_n_dot_v;
+        let (w, gr) = match smith {
+            SmithForm::Separable => (w * self.g1v, g1r),
+            SmithForm::HeightCorrelated => (w, smith.g(self.g1v, g1r)),
+        };
+        let g2 = self.eta2_m1 + c * c;
+        if g2 < 0.0 {
+            return [w * gr, 0.0];
+        }
+        let g = g2.sqrt();
+        let (p, q) = (g + c, g - c);
+        let (nn, dd) = (c * p - 1.0, c * q + 1.0);
+        let f = 0.5 * q * q * (dd * dd + nn * nn) / (p * p * dd * dd);
+        let nlt = (-q * m.n_dot_h - self.n_dot_v) * self.inv_eta;
+        let t = if nlt < 0.0 {
+            let g1t = ndf.g1((-nlt).min(1.0));
+            let gt = match smith {
+                SmithForm::Separable => g1t,
+                SmithForm::HeightCorrelated => smith.g(self.g1v, g1t),
+            };
+            w * (1.0 - f) * gt
+        } else {
+            0.0
+        };
+        [w * f * gr, t]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::NdfKind;
+
+    /// [`BelowOne`] against [`integrands_many`] and [`albedo_integrands`] over a grid of
+    /// micro-normals, views, indices below 1, roughnesses and both masking forms. They are
+    /// the same formulas rearranged (a shared square root, products by inverses, one
+    /// division for F), so they may differ by a few roundings of values ≤ D·c/(n·v): the
+    /// bound is 1e-12 relative to that scale.
+    #[test]
+    fn below_one_matches_integrands_many() {
+        for &alpha in &[1e-3, 0.1, 0.5, 1.0] {
+            let ndf = Ndf::new(NdfKind::Ggx, alpha).unwrap();
+            for smith in [SmithForm::Separable, SmithForm::HeightCorrelated] {
+                for &eta in &[1e-4, 0.3, 0.667, 0.95, 0.9999] {
+                    for iv in 1..8 {
+                        let mu = iv as f64 / 8.0;
+                        let sin_v = (1.0 - mu * mu).sqrt();
+                        let g1v = ndf.g1(mu);
+                        let b = BelowOne::new(eta, mu, g1v);
+                        for ih in 0..24 {
+                            let th = ih as f64 / 24.0 * 1.5;
+                            for ip in 0..12 {
+                                let cp = (ip as f64 / 11.0 * std::f64::consts::PI).cos();
+                                let m = MicroNormal {
+                                    n_dot_h: th.cos(),
+                                    sin2_h: th.sin() * th.sin(),
+                                    v_dot_h: sin_v * th.sin() * cp + mu * th.cos(),
+                                };
+                                let old = integrands_many::<2>(&ndf, smith, &[eta], mu, g1v, &m);
+                                let alb = albedo_integrands::<1>(&ndf, smith, &[eta], mu, g1v, &m);
+                                let new = b.integrands(&ndf, smith, &m);
+                                let scale = ndf.d_cs(m.n_dot_h, m.sin2_h) * m.v_dot_h.abs() / mu;
+                                for (x, y) in [
+                                    (old[0], new[0]),
+                                    (old[1], new[1]),
+                                    (alb[0], new[0] + new[1]),
+                                ] {
+                                    let e = (x - y).abs() / scale.max(1e-300);
+                                    assert!(
+                                        e <= 1e-12,
+                                        "{alpha} {smith:?} {eta} {mu} {th} {cp}: {x} vs {y}"
+                                    );
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

@@ -17,7 +17,7 @@ use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
 pub use crate::kernels::micro_normals::{phi_breaks, transmitted_horizon, MAX_ETAS};
 use crate::lut::Quantity;
 use crate::model::btdf::{
-    albedo_integrands, integrands_many, MicroNormal, RoughDielectric, SmithForm,
+    albedo_integrands, integrands_many, BelowOne, MicroNormal, RoughDielectric, SmithForm,
 };
 use crate::model::{Fresnel, FresnelQuantity, Masking, Ndf, NdfKind};
 use crate::quadrature::cc1d::Estimator;
@@ -192,6 +192,17 @@ pub fn reflect_transmit_etas_with<const N: usize>(
     );
     let mu1 = mu.min(1.0);
     let g1v = ndf.g1(mu1);
+    if let [eta] = *etas {
+        if eta < 1.0 && mu1 > 0.0 {
+            let below = BelowOne::new(eta, mu1, g1v);
+            return integrate_micro_normals(ndf, Rule::standard(etas), mu, tol, |h| {
+                let [r, t] = below.integrands(ndf, smith, h);
+                let mut y = [0.0; N];
+                (y[0], y[1]) = (r, t);
+                y
+            });
+        }
+    }
     integrate_micro_normals(ndf, Rule::standard(etas), mu, tol, |h: &MicroNormal| {
         integrands_many::<N>(ndf, smith, etas, mu1, g1v, h)
     })
@@ -232,6 +243,20 @@ fn shared_rule(
         view_peak: false,
         estimator: Estimator::Tail,
     };
+    if let [eta] = *etas {
+        if eta < 1.0 && mu1 > 0.0 {
+            let below = BelowOne::new(eta, mu1, g1v);
+            return integrate_micro_normals(ndf, rule, mu, tol, |h| {
+                let [r, t] = below.integrands(ndf, smith, h);
+                let mut y = [0.0; FIBRE_CHANNELS];
+                match k {
+                    1 => y[0] = r + t,
+                    _ => (y[0], y[1]) = (r, t),
+                }
+                y
+            });
+        }
+    }
     integrate_micro_normals(ndf, rule, mu, tol, |h: &MicroNormal| {
         integrands(ndf, smith, etas, mu1, g1v, h)
     })
