@@ -244,6 +244,13 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(d) = get(&["model", "diffuse", "weight"]) {
         model.insert("diffuse".into(), d.clone());
     }
+    // the diffuse lobe's model where it is not Lambert's (the preset's default), as the sidecar
+    // names it (Burley's: an ltc table's lobe)
+    if let Some(n) = get(&["model", "diffuse", "name"]).and_then(Value::as_str) {
+        if n != "none" && n != crate::model::DiffuseModel::Lambert.name() {
+            model.insert("diffuse_model".into(), Value::from(n));
+        }
+    }
     let mut axes = Map::new();
     // the stored order (the preset's axis_order, which the kind's own order leaves unset)
     let mut order = Vec::new();

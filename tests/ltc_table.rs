@@ -406,6 +406,39 @@ fn verify_and_probe_know_the_fit_has_no_exact_value() {
     );
 }
 
+/// `verify` of an ltc table of Burley's diffuse (`model.diffuse_model`): the sidecar names the
+/// lobe, and verify recomputes Burley's (its norm, its refit), not Lambert's, so the table
+/// verifies. Control: the same sidecar naming Lambert's lobe (sealed again) fails on the norm
+/// (Lambert's albedo is 1, Burley's differs from it by up to ~0.5 at this grid's corners).
+#[test]
+fn verify_recomputes_burleys_diffuse() {
+    let preset = r#"{ "schema": "brdfbake.preset/1", "tables": [ { "name": "burley", "kind": "ltc",
+        "model": { "diffuse": 1, "diffuse_model": "burley" },
+        "axes": { "cos_theta_v": { "size": 6, "convention": "endpoints", "clamp": [0.05, 1] },
+                  "roughness": { "size": 6, "quantity": "alpha", "convention": "endpoints", "clamp": [0.01, 1] } },
+        "ltc": { "channels": ["m00", "m20", "m02", "m22", "norm"] },
+        "formats": ["exr"] } ] }"#;
+    let (dir, out) = bake(preset);
+    let sidecar = out.join("burley.json");
+    let o = run(dir.path(), &["verify", sidecar.to_str().unwrap(), "--all"]);
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(o.status.success(), "{text}{}", cli::stderr(&o));
+    let original = std::fs::read_to_string(&sidecar).unwrap();
+    let mut v: Value = serde_json::from_str(&original).unwrap();
+    assert_eq!(v["model"]["diffuse"]["name"], "burley", "{original}");
+    v["model"]["diffuse"]["name"] = "lambert".into();
+    let exr = std::fs::read(out.join("burley.exr")).unwrap();
+    let sealed = brdfbake::digest::seal(v, &[("burley.exr", exr.as_slice())]);
+    std::fs::write(&sidecar, sealed).unwrap();
+    let o = run(dir.path(), &["verify", sidecar.to_str().unwrap(), "--all"]);
+    assert!(
+        !o.status.success(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert!(cli::stderr(&o).contains("norm"), "{}", cli::stderr(&o));
+}
+
 /// `probe --polygon` on an ltc table: the lit value of a polygon light from the table (the
 /// texels looked up as a shader does, M⁻¹ rebuilt, the clipped-polygon integral, times the
 /// norm or Schlick's combination) next to the exact value by quadrature, and their relative
