@@ -26,8 +26,11 @@
 //! axes end at η = 100, so the preset clamps it to 0.9801 (η = 99.5) and that column differs
 //! by what [`expected`] computes between the two indices (≤ 4e-3 at the quoted texels).
 
+#[path = "common/eevee.rs"]
+mod eevee;
 #[path = "common/reference.rs"]
 mod reference;
+use eevee::{refract, EEVEE_ERROR};
 
 use brdfbake::lut::Lut;
 use brdfbake::model::{Masking, NdfKind};
@@ -129,21 +132,6 @@ fn shipped(file: &str) -> Vec<(usize, usize, usize, Vec<f64>)> {
         .collect()
 }
 
-/// GLSL `refract(I, N, r)`: `None` where k = 1 − r²(1 − (N·I)²) < 0.
-fn refract(i: [f64; 3], n: [f64; 3], r: f64) -> Option<[f64; 3]> {
-    let d = dot(n, i);
-    let k = 1.0 - r * r * (1.0 - d * d);
-    if k < 0.0 {
-        return None;
-    }
-    let s = r * d + k.sqrt();
-    Some([
-        r * i[0] - s * n[0],
-        r * i[1] - s * n[1],
-        r * i[2] - s * n[2],
-    ])
-}
-
 /// Which cosine Schlick's weight s = (1 − cos)⁵ takes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Weight {
@@ -206,15 +194,6 @@ fn expected(p: Texel, w: Weight, tol: f64) -> ([f64; 3], f64) {
 
 /// f32 rounding of a stored value ≤ 1 (half an ulp below 1: 2⁻²⁴ ≈ 6e-8).
 const F32: f64 = 6e-8;
-
-/// EEVEE's own error, as tests/eevee_btdf.rs argues it for the same generator: its float32
-/// running sum of 512² samples in [0, 1] rounds the mean by at most 2⁻⁷·m̄ ≤ 2⁻⁷ (the sum's
-/// spacing reaches 2⁻⁶ past 2¹⁷); its sampling error, a sample's variance being at most 1/4,
-/// is σ ≤ 0.5/512 for independent samples (Hammersley points do better), taken at 3σ; plus
-/// the quotes' 6 decimals (5e-7). B = 2⁻⁷ + 3·0.5/512 + 5e-7 ≈ 1.07e-2. (The float32 sum is
-/// visible in btdf_ggx's α = 0 layer, where every sample is the same value: 0.744800 at
-/// y = 55 against the exact 1 − (1 − μ)⁵ = 0.742829.)
-const EEVEE_ERROR: f64 = 0.0078125 + 3.0 * 0.5 / 512.0 + 5e-7;
 
 /// The stored channels of a preset and the channels of [`expected`] they are.
 fn channel_map(preset: &str) -> &'static [usize] {

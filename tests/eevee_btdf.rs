@@ -24,8 +24,11 @@
 //! error; ours match the physical reference; and where as-written and physical differ by
 //! more than twice EEVEE's error, the shipped value misses ours.
 
+#[path = "common/eevee.rs"]
+mod eevee;
 #[path = "common/reference.rs"]
 mod reference;
+use eevee::{refract, EEVEE_ERROR};
 
 use brdfbake::lut::Lut;
 use brdfbake::model::{Masking, NdfKind};
@@ -94,21 +97,6 @@ fn shipped() -> Vec<(usize, usize, usize, f64, f64)> {
             )
         })
         .collect()
-}
-
-/// GLSL `refract(I, N, r)`: `None` where k = 1 − r²(1 − (N·I)²) < 0.
-fn refract(i: [f64; 3], n: [f64; 3], r: f64) -> Option<[f64; 3]> {
-    let d = dot(n, i);
-    let k = 1.0 - r * r * (1.0 - d * d);
-    if k < 0.0 {
-        return None;
-    }
-    let s = r * d + k.sqrt();
-    Some([
-        r * i[0] - s * n[0],
-        r * i[1] - s * n[1],
-        r * i[2] - s * n[2],
-    ])
 }
 
 /// [T, R] of EEVEE's estimator in expectation, by h-space quadrature (independent of
@@ -325,15 +313,6 @@ fn table_meets_closed_forms_and_the_independent_integrator() {
         "the reference at a linear axis' view cosines should miss: {control}"
     );
 }
-
-/// EEVEE's float32 sum of 512² samples: every sample is in [0, 1], so the running sum S_k
-/// stays ≤ k·m̄ and its k-th addition rounds by at most 2⁻²⁴ S_k; the mean's error is at
-/// most Σ 2⁻²⁴ k m̄/N ≤ 2⁻²⁴·N/2·m̄ = 2⁻⁷·m̄ ≤ 2⁻⁷ (7.8e-3, the bound tests/engines.rs
-/// argues for `bsdf_split_sum_ggx`). Its sampling error: a sample's variance is at most
-/// 1/4, so an independent-sample estimate has σ ≤ 0.5/512 ≈ 9.8e-4 (Hammersley points do
-/// better); 3σ. Plus the quotes' 6 decimals (5e-7). EEVEE's own error B = 2⁻⁷ + 3·0.5/512
-/// + 5e-7 ≈ 1.07e-2.
-const EEVEE_ERROR: f64 = 0.0078125 + 3.0 * 0.5 / 512.0 + 5e-7;
 
 /// Against EEVEE's quoted texels. For each: the shipped (T, R) is within B of EEVEE's
 /// estimator as written in expectation (h-space quadrature, requested 1e-6, so the check is
