@@ -263,7 +263,15 @@ fn compare_reads_the_published_table() {
     assert!(f(&norm["brdfbake"]["max_abs"]) <= 1e-6, "{norm}");
     assert!(f(&ch(&d2, "sphere")["shipped"]["max_abs"]) <= 5e-6);
     assert!(f(&ch(&d2, "fresnel")["shipped"]["max_abs"]) < 0.05);
+    // ltc_2's reference is a separate, tighter bake; ltc_1's is the fit itself, and says so
+    assert!(d2["reference_is_own_bake"].is_null(), "{d2}");
     let d1 = doc("ltc_1");
+    assert!(
+        d1["reference_is_own_bake"]
+            .as_str()
+            .is_some_and(|w| w.contains("LTC fit")),
+        "{d1}"
+    );
     for c in ["m00", "m20", "m02", "m22"] {
         let s = ch(&d1, c);
         assert_eq!(f(&s["brdfbake"]["max_abs"]), 0.0, "{s}");

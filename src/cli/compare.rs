@@ -156,6 +156,13 @@ fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result
         num(c.reference_tolerance),
         num(c.exact_error_estimate)
     );
+    if let Some(why) = c.reference_is_own_bake {
+        outln!(
+            "  (the table's own tolerance: {why}; brdfbake's rows below compare its table with the same computation, \
+             0 by construction, and its error is bounded by the error estimate, {})",
+            num(c.exact_error_estimate)
+        );
+    }
     for ch in &c.channels {
         outln!("  channel {}:", ch.channel);
         let mut rows = vec![("shipped ", &ch.shipped), ("brdfbake", &ch.brdfbake)];

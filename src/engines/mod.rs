@@ -25,6 +25,11 @@ pub struct Comparison {
     /// where the tighter one cannot be reached), and its largest error estimate.
     pub reference_tolerance: f64,
     pub exact_error_estimate: f64,
+    /// Why the reference is baked at the table's own tolerance, where it is (an `ltc` table's
+    /// fit, or a tighter rule that does not converge at every texel): it is then the same
+    /// computation as brdfbake's table, whose error against it is 0 by construction, and
+    /// brdfbake's true error is bounded by the error estimate alone.
+    pub reference_is_own_bake: Option<&'static str>,
     /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
     /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
     pub brdfbake_bound: f64,
@@ -179,6 +184,13 @@ pub fn compare_table(
         file: file.to_string(),
         dims: stored_axes.iter().map(|a| a.size).collect(),
         reference_tolerance,
+        reference_is_own_bake: (reference_tolerance >= t.spec.tolerance).then_some(
+            if fits_matrix {
+                "the table is an LTC fit, whose matrix has no exact value beyond the fit"
+            } else {
+                "a 100x tighter reference does not converge at every texel"
+            },
+        ),
         exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
         brdfbake_bound: 1e-6f64.max(rounding),
         channels,
