@@ -20,30 +20,9 @@ use brdfbake::kernels::ltc_probe::probe_quads;
 use rayon::prelude::*;
 use std::time::Instant;
 
-const MODELS: [(&str, &str); 7] = [
-    (
-        "ggx-hc",
-        r#"{ "ndf": "ggx", "masking": "smith-height-correlated" }"#,
-    ),
-    (
-        "ggx-separable",
-        r#"{ "ndf": "ggx", "masking": "smith-separable" }"#,
-    ),
-    (
-        "beckmann",
-        r#"{ "ndf": "beckmann", "masking": "smith-height-correlated" }"#,
-    ),
-    (
-        "charlie-ashikhmin",
-        r#"{ "ndf": "charlie", "masking": "ashikhmin" }"#,
-    ),
-    (
-        "charlie-conty-kulla",
-        r#"{ "ndf": "charlie", "masking": "conty-kulla" }"#,
-    ),
-    ("lambert", r#"{ "diffuse": 1 }"#),
-    ("burley", r#"{ "diffuse": 1, "diffuse_model": "burley" }"#),
-];
+#[path = "../tests/common/ltc_models.rs"]
+mod ltc_models;
+use ltc_models::MODELS;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

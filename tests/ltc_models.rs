@@ -19,31 +19,9 @@ use brdfbake::table::albedo::directional_albedo;
 use brdfbake::table::{BakeOptions, TableSpec};
 use rayon::prelude::*;
 
-/// The models: a name and the preset's `model`.
-const MODELS: [(&str, &str); 7] = [
-    (
-        "ggx-hc",
-        r#"{ "ndf": "ggx", "masking": "smith-height-correlated" }"#,
-    ),
-    (
-        "ggx-separable",
-        r#"{ "ndf": "ggx", "masking": "smith-separable" }"#,
-    ),
-    (
-        "beckmann",
-        r#"{ "ndf": "beckmann", "masking": "smith-height-correlated" }"#,
-    ),
-    (
-        "charlie-ashikhmin",
-        r#"{ "ndf": "charlie", "masking": "ashikhmin" }"#,
-    ),
-    (
-        "charlie-conty-kulla",
-        r#"{ "ndf": "charlie", "masking": "conty-kulla" }"#,
-    ),
-    ("lambert", r#"{ "diffuse": 1 }"#),
-    ("burley", r#"{ "diffuse": 1, "diffuse_model": "burley" }"#),
-];
+#[path = "common/ltc_models.rs"]
+mod ltc_models;
+use ltc_models::MODELS;
 
 /// The table's grid: 3 views (cos θv = 0.35, 0.675, 1) × 3 perceptual roughnesses (0.35,
 /// 0.675, 1; α = r²), endpoints: away from the grazing views and mirror-like lobes, where
