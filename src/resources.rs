@@ -213,28 +213,12 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // per texel, nodes counted once), the η < 1 slices stay one rule each, 6,963–7,897
         // per texel: 4,065 per texel on the preset (half its slices below 1)
         K::DielectricBtdf => {
-            // (the fraction of η < 1 slices; all of them if there is no Fresnel axis)
-            let frac = spec.axes.get(2).map_or(1.0, |z| {
-                let below = (0..z.size)
-                    .filter(|&k| z.fresnel_parameter(k).is_some_and(|eta| eta < 1.0))
-                    .count();
-                below as f64 / z.size.max(1) as f64
-            });
+            let frac = below_one_fraction(spec);
             (7_500.0 * frac + 750.0 * (1.0 - frac), 0.0)
         }
         // dielectric-albedo: measured on Cycles' glass_E layout; η < 1 slices one rule each
         K::DielectricAlbedo => {
-            let frac = spec.axes.get(2).map_or(1.0, |z| {
-                let below = (0..z.size)
-                    .filter(|&k| {
-                        z.fresnel_parameter(k).is_some_and(|eta| {
-                            eta < 1.0
-                                && matches!(z.quantity, crate::lut::Quantity::Fresnel(q) if q.is_eta())
-                        })
-                    })
-                    .count();
-                below as f64 / z.size.max(1) as f64
-            });
+            let frac = below_one_fraction(spec);
             (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
         }
         K::DielectricAlbedoAvg => (100_000.0, 0.0),
@@ -242,12 +226,7 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // 6,034 (all η < 1, eevee-bsdf-ggx) and 2,420 (all η > 1, eevee-btdf-ggx) per texel
         // (2026-12-02)
         K::DielectricSchlick => {
-            let frac = spec.axes.get(2).map_or(1.0, |z| {
-                let below = (0..z.size)
-                    .filter(|&k| z.fresnel_parameter(k).is_some_and(|eta| eta < 1.0))
-                    .count();
-                below as f64 / z.size.max(1) as f64
-            });
+            let frac = below_one_fraction(spec);
             (6_000.0 * frac + 2_400.0 * (1.0 - frac), 0.0)
         }
         // schlick-weight-*: measured 1,165 (exponent axis) and 1,186 (eta axis) per texel on
@@ -303,6 +282,21 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         }
         K::LtcSphere => (0.0, 0.0),
     }
+}
+
+/// The fraction of a dielectric table's slices whose relative index η < 1 (each integrated
+/// by its own rule, the costly ones); all of them without a fresnel axis, none on a fresnel
+/// axis that does not give η (which the dielectric kinds refuse).
+fn below_one_fraction(spec: &crate::table::TableSpec) -> f64 {
+    spec.axes.get(2).map_or(1.0, |z| {
+        if !matches!(z.quantity, crate::lut::Quantity::Fresnel(q) if q.is_eta()) {
+            return 0.0;
+        }
+        let below = (0..z.size)
+            .filter(|&k| z.fresnel_parameter(k).is_some_and(|eta| eta < 1.0))
+            .count();
+        below as f64 / z.size.max(1) as f64
+    })
 }
 
 /// Typical evaluations per texel of a `classic-albedo` table (see [`evals_per_texel`]).
