@@ -222,12 +222,13 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
             (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
         }
         K::DielectricAlbedoAvg => (100_000.0, 0.0),
-        // dielectric-schlick: one rule per texel with dielectric-btdf's breakpoints; measured
-        // 6,034 (all η < 1, eevee-bsdf-ggx) and 2,420 (all η > 1, eevee-btdf-ggx) per texel
-        // (2026-12-02)
+        // dielectric-schlick: η < 1 one rule per texel with dielectric-btdf's breakpoints,
+        // measured 6,034 per texel (eevee-bsdf-ggx); η ≥ 1 fibres of 8 slices per rule,
+        // measured 324 nodes per texel (eevee-btdf-ggx, 2026-12-02), each node with 8
+        // refractions: counted as 400
         K::DielectricSchlick => {
             let frac = below_one_fraction(spec);
-            (6_000.0 * frac + 2_400.0 * (1.0 - frac), 0.0)
+            (6_000.0 * frac + 400.0 * (1.0 - frac), 0.0)
         }
         // schlick-weight-*: measured 1,165 (exponent axis) and 1,186 (eta axis) per texel on
         // the cycles-ggx-gen-schlick-* presets (2026-12-02, fibres of 8 slices)

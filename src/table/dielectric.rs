@@ -375,7 +375,7 @@ fn kind_fibre(
 }
 
 /// One NDF per roughness texel (axis 1) of a validated dielectric spec.
-fn ndfs(spec: &TableSpec) -> Vec<Ndf> {
+pub(crate) fn ndfs(spec: &TableSpec) -> Vec<Ndf> {
     let kind = spec.model.ndf.unwrap_or(NdfKind::Ggx);
     (0..spec.axes[1].size)
         .map(|j| Ndf::new(kind, spec.axes[1].alpha(j).expect("roughness axis")).expect("validated"))
@@ -383,7 +383,7 @@ fn ndfs(spec: &TableSpec) -> Vec<Ndf> {
 }
 
 /// Every slice's η and, per view texel, every slice's view cosine.
-fn etas_and_mus(spec: &TableSpec) -> (Vec<f64>, Vec<Vec<f64>>) {
+pub(crate) fn etas_and_mus(spec: &TableSpec) -> (Vec<f64>, Vec<Vec<f64>>) {
     let nz = spec.axes[2].size;
     let etas: Vec<f64> = (0..nz).map(|z| eta_of_slice(spec, z)).collect();
     let mus = (0..spec.axes[0].size)

@@ -209,6 +209,7 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
         TableKind::SchlickWeightVndf | TableKind::SchlickWeightAlbedo => {
             Some(super::schlick_weight::fibre_fn(spec))
         }
+        TableKind::DielectricSchlick => Some(super::dielectric_schlick::fibre_fn(spec)),
         TableKind::AlbedoFresnel => fresnel_fibre_fn(spec),
         _ => None,
     }
