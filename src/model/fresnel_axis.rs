@@ -111,12 +111,12 @@ impl FresnelQuantity {
         match self {
             FresnelQuantity::F0 => "F0 = coordinate (Schlick)",
             FresnelQuantity::SqrtF0 => "F0 = coordinate^2 (Schlick)",
-            FresnelQuantity::Eta => "eta = coordinate (exact Fresnel)",
+            FresnelQuantity::Eta => "eta = coordinate (the relative index of refraction)",
             FresnelQuantity::EtaReflectance => {
-                "eta = (1 + coordinate)/(1 - coordinate), i.e. coordinate = (eta - 1)/(eta + 1) (exact Fresnel)"
+                "eta = (1 + coordinate)/(1 - coordinate), i.e. coordinate = (eta - 1)/(eta + 1) (the relative index of refraction)"
             }
             FresnelQuantity::InverseEtaReflectance => {
-                "eta = (1 - coordinate)/(1 + coordinate), i.e. coordinate = (1 - eta)/(1 + eta) = (1/eta - 1)/(1/eta + 1) (exact Fresnel)"
+                "eta = (1 - coordinate)/(1 + coordinate), i.e. coordinate = (1 - eta)/(1 + eta) = (1/eta - 1)/(1/eta + 1) (the relative index of refraction)"
             }
             FresnelQuantity::SchlickExponent => {
                 "exponent e = coordinate of the generalized Schlick weight (1 - v.h)^e"
