@@ -3,7 +3,8 @@
 //! per axis), nodes per texel, CPU ms on one thread, the largest estimate and the largest
 //! and median true error against the same rule at tolerance 1e-12.
 //!
-//! `cargo run --release --example schlick_probe [-- bsdf|btdf S]`: the texel rule; the
+//! `cargo run --release --example schlick_probe [-- bsdf|btdf S]`, or `-- one ALPHA ETA MU`
+//! for one texel's value, estimate and nodes: the texel rule; the
 //! `btdf` grid's bake shares rules across η (`dielectric_schlick::fibre_fn`), whose nodes
 //! the bake's sidecar counts.
 use brdfbake::kernels::micro_normals::{integrate_micro_normals, Rule};
@@ -14,9 +15,21 @@ use brdfbake::model::{Ndf, NdfKind};
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let which = args.get(1).map_or("bsdf", |s| s.as_str()).to_string();
-    let step: usize = args.get(2).map_or(4, |s| s.parse().unwrap());
+    let step: usize = args.get(2).map_or(4, |s| s.parse().unwrap_or(4));
     let tol = 1e-6;
     let mut texels = Vec::new();
+    if which == "one" {
+        let v: Vec<f64> = args[2..5].iter().map(|s| s.parse().unwrap()).collect();
+        let ndf = Ndf::new(NdfKind::Ggx, v[0]).unwrap();
+        let (eta, mu) = (v[1], v[2]);
+        let g1v = ndf.g1(mu);
+        let e =
+            integrate_micro_normals(&ndf, Rule::standard(&[eta]), mu, tol, |h: &MicroNormal| {
+                integrands(&ndf, SmithForm::Separable, eta, mu, g1v, h)
+            });
+        println!("{e:?}");
+        return;
+    }
     for k in (1..16).step_by(2) {
         let r = k as f64 / 15.0;
         let alpha = r * r;

@@ -208,3 +208,45 @@ fn separable_albedo_matches_reference() {
         }
     }
 }
+
+/// Grazing views inside the denser medium with height-correlated masking (Cycles'
+/// `glass_inv_E` at n·v = 1e-4, its clamp): each texel alone (size-1 axes, so the table's
+/// estimate is the texel's own) within its estimate of the value the R, T rule converges to
+/// at 1e-11 (it agrees with itself from 1e-8 on to 1e-12 there), plus the f32 rounding of
+/// the stored value (half an ulp, ≤ 6e-8). Here the v·h = 0 end of the inner range falls
+/// from the equator to the lobe within Δφ ≈ n·v/(α sin θv) beyond π/2; without a panel end
+/// there, and with the tail estimate, these texels erred by 5.3e-7 and 2.0e-7 with estimates
+/// of 4.3e-7 and 8e-8 (examples/glass_probe.rs).
+#[test]
+fn grazing_inverse_index_texels_are_within_their_estimates() {
+    use brdfbake::model::btdf::SmithForm;
+    use brdfbake::model::{Ndf, NdfKind};
+    use brdfbake::table::dielectric::reflect_transmit_etas_with;
+    for (r, eta) in [
+        (0.2, 0.38461538461538464),
+        (4.0 / 15.0, 0.010049997474875021),
+    ] {
+        let mu = 1e-4;
+        let lut = bake(
+            "dielectric-albedo",
+            "smith-height-correlated",
+            &format!(
+                r#""cos_theta_v": {{"size": 1, "range": [{mu}, {mu}]}},
+                   "roughness": {{"size": 1, "quantity": "perceptual", "range": [{r}, {r}]}},
+                   "fresnel": {{"size": 1, "quantity": "eta", "range": [{eta}, {eta}]}}"#
+            ),
+        );
+        let ndf = Ndf::new(NdfKind::Ggx, r * r).unwrap();
+        let e =
+            reflect_transmit_etas_with::<2>(&ndf, SmithForm::HeightCorrelated, &[eta], mu, 1e-11);
+        let want = e.value[0] + e.value[1];
+        let got = lut.texel([0, 0, 0], 0) as f64;
+        let bound =
+            lut.error_estimate[0] + e.error[0] + e.error[1] + 0.5 * f32::EPSILON as f64 * want;
+        assert!(
+            (got - want).abs() <= bound,
+            "mu {mu} r {r} eta {eta}: {got} vs {want} (error {:.2e}, bound {bound:.2e})",
+            (got - want).abs()
+        );
+    }
+}
