@@ -456,8 +456,13 @@ impl ThetaTail {
         self.s + (FRAC_PI_2 - TAIL_TAN.atan()) / self.k
     }
 
-    fn variable(self) -> Variable {
-        Variable::Tail(self)
+    /// σ at x = tan θh (∞ at the equator).
+    fn of(self, x: f64) -> f64 {
+        if x <= TAIL_TAN {
+            (x / self.alpha).asinh()
+        } else {
+            self.s + (x.atan() - TAIL_TAN.atan()) / self.k
+        }
     }
 
     /// `(cos θh, sin θh, sin θh dθh/dσ)` at σ > s (θh at most π/2, where cos θh = 6e-17 > 0
@@ -466,25 +471,6 @@ impl ThetaTail {
         let th = (TAIL_TAN.atan() + self.k * (sigma - self.s)).min(FRAC_PI_2);
         let (sin_h, cos_h) = th.sin_cos();
         (cos_h, sin_h, sin_h * self.k)
-    }
-}
-
-/// The inner variable as a function of x = tan θh (∞ at the equator).
-#[derive(Clone, Copy, Debug)]
-enum Variable {
-    /// u = asinh(x/α), at most the cap
-    Lobe(f64, f64),
-    /// [`ThetaTail`]
-    Tail(ThetaTail),
-}
-
-impl Variable {
-    fn of(self, x: f64) -> f64 {
-        match self {
-            Variable::Lobe(alpha, cap) => (x / alpha).asinh().min(cap),
-            Variable::Tail(t) if x <= TAIL_TAN => (x / t.alpha).asinh(),
-            Variable::Tail(t) => t.s + (x.atan() - TAIL_TAN.atan()) / t.k,
-        }
     }
 }
 
@@ -568,11 +554,11 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     let reach = if critical { NEAR_REACH } else { 0.0 };
     // without a critical angle, beyond θh = 45° in the θ-tail variable ([`ThetaTail`])
     let tail = (!critical).then(|| ThetaTail::new(alpha));
-    let (cap, to_u) = match tail {
-        Some(t) => (t.end(), t.variable()),
-        None => (cap, Variable::Lobe(alpha, cap)),
+    let cap = tail.map_or(cap, ThetaTail::end);
+    let to_u = |x: f64| match tail {
+        Some(t) => t.of(x),
+        None => (x / alpha).asinh().min(cap),
     };
-    let to_u = |x: f64| to_u.of(x);
     let phi_integrand = |phi: f64| -> [f64; N] {
         let (sp, cp) = phi.sin_cos();
         let u_end = if cp < 0.0 && sin_v > 0.0 {
