@@ -1,16 +1,19 @@
 //! Integrals over the micro-normals h of a GGX surface seen from a view v: the nested rule
 //! of the dielectric kinds (`dielectric-btdf`, `dielectric-albedo`), of the `schlick-weight`
-//! kind and of the `karis-f82` dfg channel, whose integrands are all of the form D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v)
-//! with kinks only where this rule puts panel boundaries ([`integrate_micro_normals`]).
+//! kind and of the `karis-f82` dfg channel, whose integrands are all of the form
+//! D(h)·(factors of v·h, the reflected and refracted directions)·c/(n·v) with kinks only
+//! where this rule puts panel boundaries ([`integrate_micro_normals`]); and of the roughness
+//! fibres ([`crate::kernels::roughness_fibre`]), several such lobes at once.
 //!
 //! The integrals run over the micro-normal h in the hemisphere about n, with v in the
 //! xz-plane and φ ∈ [0, π] doubled by symmetry; the inner variable is the lobe warp
 //! u = asinh(tan θh/α) of `hemisphere.rs`, and in integrals without a critical angle
-//! (no η < 1) θh itself beyond θh = 45° (`ThetaTail`: there the integrand is smooth in θh
-//! and decays like e^(−u) in u). The inner range ends where v·h = 0
-//! (tan θh = n·v/(sin θv (−cos φ)) for cos φ < 0) or, where h reaches the equator with
-//! v·h > 0, at the equator itself (θ-tail) or at u = 30 or beyond where a grazing view or a
-//! tight tolerance needs it (`u_cap`: the tail left out is below 1e-3 of the tolerance).
+//! (no η < 1) or with several lobes (`Rule::alphas`) θh itself beyond θh = 45°
+//! (`ThetaTail`: there the integrand is smooth in θh and decays like e^(−u) in u). The
+//! inner range ends where v·h = 0 (tan θh = n·v/(sin θv (−cos φ)) for cos φ < 0) or,
+//! where h reaches the equator with v·h > 0, at the equator itself (θ-tail) or at u = 30 or
+//! beyond where a grazing view or a tight tolerance needs it (`u_cap`: the tail left out is
+//! below 1e-3 of the tolerance).
 //!
 //! **Kinks are panel boundaries, in both variables.** Inside a panel the integrand is
 //! smooth, so every panel is first integrated by nested Clenshaw–Curtis
@@ -490,6 +493,13 @@ pub struct Rule<'a> {
     pub view_peak: bool,
     /// The error estimate of every panel's nested Clenshaw–Curtis rule.
     pub estimator: Estimator,
+    /// The roughnesses of an integrand that carries several lobes (a fibre along the
+    /// roughness axis; empty: the NDF's own). The rule's variable is the warp of the NDF
+    /// passed, which should be the narrowest; the lobes' grazing-view layers get panel
+    /// breaks ([`layer_cosine`]: the widest lobe's, then each where x has doubled), and the
+    /// range ends at the equator by the θ-tail ([`ThetaTail`], also with a critical angle:
+    /// beyond the narrow lobe's scale the wide lobes are smooth in θh, not in its u).
+    pub alphas: &'a [f64],
 }
 
 impl<'a> Rule<'a> {
@@ -500,6 +510,7 @@ impl<'a> Rule<'a> {
             cones: &[],
             view_peak: false,
             estimator: Estimator::Standard,
+            alphas: &[],
         }
     }
 }
@@ -527,6 +538,7 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
         cones,
         view_peak,
         estimator,
+        alphas,
     } = rule;
     assert!(
         etas.len() + cones.len() <= MAX_ETAS,
@@ -552,8 +564,9 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     // (only with a critical angle: the other integrals keep their bits)
     let critical = etas.iter().any(|&eta| eta < 1.0);
     let reach = if critical { NEAR_REACH } else { 0.0 };
-    // without a critical angle, beyond θh = 45° in the θ-tail variable ([`ThetaTail`])
-    let tail = (!critical).then(|| ThetaTail::new(alpha));
+    // without a critical angle or with several lobes, beyond θh = 45° in the θ-tail
+    // variable ([`ThetaTail`])
+    let tail = (!critical || !alphas.is_empty()).then(|| ThetaTail::new(alpha));
     let cap = tail.map_or(cap, ThetaTail::end);
     let to_u = |x: f64| match tail {
         Some(t) => t.of(x),
@@ -651,8 +664,19 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     breaks.push(PI, false);
     breaks.push(FRAC_PI_2, false);
     // the boundary layer beyond π/2 at a view grazing on the lobe's scale (module docs)
-    if let Some(x) = layer_cosine(alpha, mu, sin_v) {
-        breaks.push(PI - x.acos(), false);
+    // (a fibre's lobes: the widest lobe's, then only where x has doubled since the last
+    // break, a layer that the panel beside the last break resolves as well as its own)
+    let mut xs: Vec<f64> = std::iter::once(alpha)
+        .chain(alphas.iter().copied())
+        .filter_map(|a| layer_cosine(a, mu, sin_v))
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    let mut last = 0.0;
+    for x in xs {
+        if x > 2.0 * last {
+            breaks.push(PI - x.acos(), false);
+            last = x;
+        }
     }
     for &eta in etas {
         // (π/2, every index's first break, once)

@@ -230,6 +230,7 @@ pub(super) fn f82_channel(s: &Specular, mu: f64, tol: f64) -> (f64, f64, u64) {
         cones: &[],
         view_peak: false,
         estimator: crate::quadrature::cc1d::Estimator::Tail,
+        alphas: &[],
     };
     let e = integrate_micro_normals(&s.ndf, rule, mu, tol, |h| {
         Facet::new(&s.ndf, smith, mu1, g1v, h).map_or([0.0], |f| {

@@ -242,6 +242,7 @@ fn shared_rule(
         cones: &[],
         view_peak: false,
         estimator: Estimator::Tail,
+        alphas: &[],
     };
     if let [eta] = *etas {
         if eta < 1.0 && mu1 > 0.0 {

@@ -217,6 +217,7 @@ fn rule(
         cones: &cones,
         view_peak: peak,
         estimator: Estimator::Tail,
+        alphas: &[],
     };
     integrate_micro_normals(ndf, r, mu, tol, |h: &MicroNormal| {
         let mut y = [0.0; CHANNELS];
