@@ -5,14 +5,22 @@
 //! whose error exceeds their own estimate, the worst ratio, and the nodes.
 //!
 //! `cargo run --release --example glass_probe [-- tail|standard [TOL]]` (TOL 1e-6; the
-//! `cycles-glass-inv-e` preset asks 1e-7)
+//! `cycles-glass-inv-e` preset asks 1e-7), or `-- fibre [TOL]`: the bake's roughness fibres
+//! (`kernels::roughness_fibre`, every roughness of one view and index by shared rules)
+//! against the same reference.
 use brdfbake::kernels::micro_normals::{integrate_micro_normals, Rule};
+use brdfbake::kernels::roughness_fibre::{roughness_fibre_with, ROUGHNESS_FIBRE};
 use brdfbake::model::btdf::{BelowOne, SmithForm};
+use brdfbake::model::fresnel::dielectric;
 use brdfbake::model::{Ndf, NdfKind};
 use brdfbake::quadrature::cc1d::Estimator;
 use brdfbake::table::dielectric::reflect_transmit_etas_with;
 
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("fibre") {
+        fibre();
+        return;
+    }
     let est = match std::env::args().nth(1).as_deref() {
         Some("standard") => Estimator::Standard,
         _ => Estimator::Tail,
@@ -71,4 +79,47 @@ fn main() {
     }
     println!("largest excess over the estimate: one channel {x1:.1e} (max error {m1:.1e}), R, T {x2:.1e} (max error {m2:.1e})");
     println!("{est:?}: {n} texels; E as one channel: {bad1} over their estimate (worst error/estimate {w1:.2}), {:.0} nodes/texel; R, T summed: {bad2} (worst {w2:.2}), {:.0} nodes/texel", ev1 as f64 / n as f64, ev2 as f64 / n as f64);
+}
+
+/// The roughness fibres of E on the same grid against the R, T rule at 1e-10.
+fn fibre() {
+    let smith = SmithForm::HeightCorrelated;
+    let tol: f64 = std::env::args()
+        .nth(2)
+        .map_or(1e-6, |s| s.parse().expect("a tolerance"));
+    let ndfs: Vec<Ndf> = (0..16)
+        .map(|j| {
+            let r = (j as f64 / 15.0).clamp(1e-4, 1.0);
+            Ndf::new(NdfKind::Ggx, r * r).unwrap()
+        })
+        .collect();
+    let (mut n, mut bad, mut worst, mut excess, mut max, mut evals) =
+        (0, 0, 0.0f64, 0.0f64, 0.0f64, 0u64);
+    let t0 = std::time::Instant::now();
+    for i in 0..16 {
+        let mu = (i as f64 / 15.0).max(1e-4);
+        for k in 0..16 {
+            let x = ((k as f64 / 15.0).powi(2)).clamp(1e-8, 0.9801);
+            let eta = (1.0 - x) / (1.0 + x);
+            let got = roughness_fibre_with::<ROUGHNESS_FIBRE, 1>(&ndfs, smith, eta, mu, tol, |c| {
+                let f = dielectric(c, eta);
+                [[f, 1.0 - f]]
+            });
+            for (ndf, e) in ndfs.iter().zip(&got) {
+                let re = reflect_transmit_etas_with::<2>(ndf, smith, &[eta], mu, 1e-10);
+                let d = (e.value[0] - re.value[0] - re.value[1]).abs();
+                n += 1;
+                bad += usize::from(d > e.error[0]);
+                worst = worst.max(d / e.error[0].max(1e-300));
+                excess = excess.max(d - e.error[0]);
+                max = max.max(d);
+                evals += e.evals;
+            }
+        }
+    }
+    println!(
+        "fibres at {tol:.0e}: {n} texels, {bad} over their estimate (worst error/estimate {worst:.2}, largest excess {excess:.1e}), max error {max:.1e}, {:.0} nodes/texel ({:.2} s with the references)",
+        evals as f64 / n as f64,
+        t0.elapsed().as_secs_f64()
+    );
 }

@@ -6,7 +6,9 @@
 //! `cargo run --release --example schlick_probe [-- bsdf|btdf S]`, or `-- one ALPHA ETA MU`
 //! for one texel's value, estimate and nodes: the texel rule; the
 //! `btdf` grid's bake shares rules across η (`dielectric_schlick::fibre_fn`), whose nodes
-//! the bake's sidecar counts.
+//! the bake's sidecar counts. `-- fibre S`: the `bsdf` grid's bake, which shares rules across
+//! the roughness layers (`kernels::roughness_fibre`), against the texel rule: nodes, time
+//! and both errors against the texel rule at 1e-12.
 use brdfbake::kernels::micro_normals::{integrate_micro_normals, Rule};
 use brdfbake::model::btdf::{MicroNormal, SmithForm};
 use brdfbake::model::schlick_dielectric::integrands;
@@ -18,6 +20,10 @@ fn main() {
     let step: usize = args.get(2).map_or(4, |s| s.parse().unwrap_or(4));
     let tol = 1e-6;
     let mut texels = Vec::new();
+    if which == "fibre" {
+        fibre(step, tol);
+        return;
+    }
     if which == "one" {
         let v: Vec<f64> = args[2..5].iter().map(|s| s.parse().unwrap()).collect();
         let ndf = Ndf::new(NdfKind::Ggx, v[0]).unwrap();
@@ -114,5 +120,86 @@ fn main() {
         secs * 1e9 / evals as f64,
         errs.last().unwrap(),
         errs[errs.len() / 2],
+    );
+}
+
+/// EEVEE's `bsdf_ggx` grid (every `step`th η and view texel, all 15 roughness layers): each
+/// texel by its own rule and by the roughness fibres of the bake; nodes, time, and both
+/// errors against the texel rule at 1e-12.
+fn fibre(step: usize, tol: f64) {
+    use brdfbake::kernels::roughness_fibre::{roughness_fibre_with, ROUGHNESS_FIBRE};
+    use brdfbake::model::schlick_dielectric::outer_schlick_weight;
+    let smith = SmithForm::Separable;
+    let ndfs: Vec<Ndf> = (1..16)
+        .map(|k| Ndf::new(NdfKind::Ggx, (k as f64 / 15.0).powi(2)).unwrap())
+        .collect();
+    let mut views = Vec::new();
+    for i in (0..64).step_by(step) {
+        for j in (0..64).step_by(step) {
+            let eta = (i as f64 / 63.0).clamp(1e-4, 0.9999).sqrt();
+            let c = (1.0 - eta * eta).sqrt();
+            let t = 2.0 * (j as f64 / 63.0) - 1.0;
+            let mu = if t < 0.0 {
+                c + t * c
+            } else {
+                c + t * (1.0 - c)
+            };
+            views.push((eta, mu.clamp(1e-4, 0.9999)));
+        }
+    }
+    let one = |ndf: &Ndf, eta: f64, mu: f64, tol: f64| {
+        let g1v = ndf.g1(mu);
+        integrate_micro_normals(ndf, Rule::standard(&[eta]), mu, tol, |h: &MicroNormal| {
+            integrands(ndf, smith, eta, mu, g1v, h)
+        })
+    };
+    let t0 = std::time::Instant::now();
+    let (mut ev1, mut v1) = (0u64, Vec::new());
+    for &(eta, mu) in &views {
+        for ndf in &ndfs {
+            let e = one(ndf, eta, mu, tol);
+            ev1 += e.evals;
+            v1.push(e);
+        }
+    }
+    let s1 = t0.elapsed().as_secs_f64();
+    let t0 = std::time::Instant::now();
+    let (mut ev2, mut v2) = (0u64, Vec::new());
+    for &(eta, mu) in &views {
+        let got =
+            roughness_fibre_with::<{ 3 * ROUGHNESS_FIBRE }, 3>(&ndfs, smith, eta, mu, tol, |c| {
+                let s = outer_schlick_weight(eta, c);
+                [[1.0 - s, 0.0], [s, 0.0], [0.0, 1.0 - s]]
+            });
+        ev2 += got.iter().map(|e| e.evals).sum::<u64>();
+        v2.extend(got);
+    }
+    let s2 = t0.elapsed().as_secs_f64();
+    let (mut m1, mut m2, mut bad1, mut bad2) = (0.0f64, 0.0f64, 0, 0);
+    let mut k = 0;
+    for &(eta, mu) in &views {
+        for ndf in &ndfs {
+            let r = one(ndf, eta, mu, 1e-12).value;
+            for (c, &r) in r.iter().enumerate() {
+                let e1 = (v1[k].value[c] - r).abs();
+                let e2 = (v2[k].value[c] - r).abs();
+                m1 = m1.max(e1);
+                m2 = m2.max(e2);
+                bad1 += usize::from(e1 > v1[k].error[c] || e1 > tol);
+                bad2 += usize::from(e2 > v2[k].error[c] || e2 > tol);
+            }
+            k += 1;
+        }
+    }
+    let n = v1.len() as f64;
+    println!(
+        "texel rule: {:.0} nodes/texel, {:.1} ms, true max {m1:.1e}, over estimate or tol: {bad1}",
+        ev1 as f64 / n,
+        s1 * 1e3
+    );
+    println!(
+        "roughness fibres: {:.0} nodes/texel, {:.1} ms, true max {m2:.1e}, over estimate or tol: {bad2}",
+        ev2 as f64 / n,
+        s2 * 1e3
     );
 }

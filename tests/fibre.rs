@@ -1,8 +1,10 @@
-//! The fibre path of `dielectric-btdf` and `albedo-fresnel` tables (src/table/mod.rs
+//! The fibre paths of `dielectric-btdf` and `albedo-fresnel` tables (src/table/mod.rs
 //! `FibreFn`, src/table/dielectric.rs `reflect_transmit_fibre`, src/table/energy.rs
 //! `directional_albedo_fresnels`): the texels of one (μ, roughness) pair, every Fresnel slice,
 //! integrated as the channels of one shared rule, against the same texels integrated one by
-//! one; and the baked tables' bytes on 1 and 2 threads.
+//! one; the roughness fibres of the η < 1 slices of the dielectric kinds
+//! (src/kernels/roughness_fibre.rs: every roughness of one (μ, η) by shared rules) likewise;
+//! and the baked tables' bytes on 1 and 2 threads.
 //!
 //! Tolerances: both paths report an error estimate per texel that over-estimates its own
 //! error (nested-rule differences, |K15 − G7| where they fall back), so two results of the
@@ -72,6 +74,68 @@ fn btdf_fibre_matches_per_texel() {
             assert_eq!(fib[2].0[0], 0.0);
             // the group's nodes are counted once, at its first slice
             assert!(shared_evals > 0 && fib[3].2 == 0 && fib[5].2 == 0);
+        }
+    }
+}
+
+/// R and T of every roughness of a roughness fibre (EEVEE's 15 layers α = (k/15)² in one
+/// rule, and Cycles' clamped α = 1e-8 beside (0.1)² … 1 in two runs) agree with
+/// `reflect_transmit_with`, whose integrand is the model's own (`BelowOne`: `Ndf::g1`,
+/// `SmithForm::g`, the exact Fresnel term), texel by texel within the sum of both estimates,
+/// each estimate within the tolerance, for both masking forms, indices from 1/3 to 0.99
+/// and views from grazing (1e-4, Cycles' clamp) to normal.
+#[test]
+fn roughness_fibre_matches_per_texel() {
+    use brdfbake::kernels::roughness_fibre::{roughness_fibre_with, ROUGHNESS_FIBRE};
+    use brdfbake::model::btdf::SmithForm;
+    use brdfbake::model::fresnel::dielectric;
+    use brdfbake::table::dielectric::reflect_transmit_with;
+    let tol = 1e-6;
+    let eevee: Vec<f64> = (1..16).map(|k| (k as f64 / 15.0).powi(2)).collect();
+    let cycles: Vec<f64> = std::iter::once(1e-8)
+        .chain((3..=10).map(|k| (k as f64 / 10.0).powi(2)))
+        .collect();
+    for (alphas, smith) in [
+        (&eevee, SmithForm::Separable),
+        (&cycles, SmithForm::HeightCorrelated),
+    ] {
+        let ndfs: Vec<Ndf> = alphas
+            .iter()
+            .map(|&a| Ndf::new(NdfKind::Ggx, a).unwrap())
+            .collect();
+        for eta in [1.0 / 3.0, 0.75, 0.99] {
+            for mu in [1e-4, 0.05, 0.5, 0.97] {
+                let fib = roughness_fibre_with::<{ 2 * ROUGHNESS_FIBRE }, 2>(
+                    &ndfs,
+                    smith,
+                    eta,
+                    mu,
+                    tol,
+                    |c| {
+                        let f = dielectric(c, eta);
+                        [[f, 0.0], [0.0, 1.0 - f]]
+                    },
+                );
+                for (ndf, e) in ndfs.iter().zip(&fib) {
+                    let m = RoughDielectric {
+                        ndf: ndf.clone(),
+                        eta,
+                    };
+                    let r = reflect_transmit_with(&m, smith, mu, tol);
+                    for c in 0..2 {
+                        assert!(e.error[c] <= tol, "{smith:?} eta {eta} mu {mu}: {e:?}");
+                        assert!(
+                            (e.value[c] - r.value[c]).abs() <= e.error[c] + r.error[c],
+                            "{smith:?} alpha {} eta {eta} mu {mu} channel {c}: fibre {} ± {} vs texel {} ± {}",
+                            ndf.alpha(),
+                            e.value[c],
+                            e.error[c],
+                            r.value[c],
+                            r.error[c]
+                        );
+                    }
+                }
+            }
         }
     }
 }
@@ -229,9 +293,11 @@ fn bake_on(threads: usize, spec: &TableSpec) -> Lut {
         .install(|| bake(spec).unwrap())
 }
 
-/// Both fibre kinds bake the same bytes, estimates and evaluation counts on 1 and 2 threads,
-/// and every texel sits where the per-texel path puts it (index order of the fibre blocks):
-/// within the per-texel estimate, the table's estimate and f32 rounding of it.
+/// The fibre kinds (`dielectric-btdf`, `albedo-fresnel`, and with η on both sides of 1
+/// `dielectric-schlick` and `dielectric-albedo`, whose η < 1 slices go by roughness fibres)
+/// bake the same bytes, estimates and evaluation counts on 1 and 2 threads, and every texel
+/// sits where the per-texel path puts it (the fibres' texels placed in texel order): within
+/// the per-texel estimate, the table's estimate and f32 rounding of it.
 #[test]
 fn fibre_tables_are_bit_identical_across_threads_and_in_place() {
     let btdf = table(
@@ -248,7 +314,22 @@ fn fibre_tables_are_bit_identical_across_threads_and_in_place() {
         [1.0, 3.0],
         10,
     );
-    for spec in [&btdf, &albedo] {
+    // η from 1/2 to 2: the η < 1 slices by roughness fibres, the others by Fresnel fibres
+    let schlick = table(
+        TableKind::DielectricSchlick,
+        Masking::SmithSeparable,
+        Fresnel::None,
+        [0.5, 2.0],
+        6,
+    );
+    let glass = table(
+        TableKind::DielectricAlbedo,
+        Masking::SmithHeightCorrelated,
+        Fresnel::None,
+        [0.5, 2.0],
+        6,
+    );
+    for spec in [&btdf, &albedo, &schlick, &glass] {
         let one = bake_on(1, spec);
         let two = bake_on(2, spec);
         let bits = |l: &Lut| l.data.iter().map(|v| v.to_bits()).collect::<Vec<u32>>();
@@ -273,13 +354,38 @@ fn fibre_tables_are_bit_identical_across_threads_and_in_place() {
                 let alpha = ax[1].alpha(j).unwrap();
                 for i in 0..ax[0].size {
                     let mu = ax[0].coord(i);
+                    let ndf = Ndf::new(NdfKind::Ggx, alpha).unwrap();
                     let (value, error): (Vec<f64>, Vec<f64>) = match spec.kind {
                         TableKind::DielectricBtdf => {
-                            let m = RoughDielectric {
-                                ndf: Ndf::new(NdfKind::Ggx, alpha).unwrap(),
-                                eta,
-                            };
+                            let m = RoughDielectric { ndf, eta };
                             let e = reflect_transmit(&m, mu, spec.tolerance);
+                            (e.value.to_vec(), e.error.to_vec())
+                        }
+                        TableKind::DielectricAlbedo => {
+                            let m = RoughDielectric { ndf, eta };
+                            let e = brdfbake::table::dielectric::reflect_transmit_with(
+                                &m,
+                                brdfbake::model::btdf::SmithForm::HeightCorrelated,
+                                mu,
+                                spec.tolerance,
+                            );
+                            (vec![e.value[0] + e.value[1]], vec![e.error[0] + e.error[1]])
+                        }
+                        TableKind::DielectricSchlick => {
+                            use brdfbake::kernels::micro_normals::{integrate_micro_normals, Rule};
+                            let smith = brdfbake::model::btdf::SmithForm::Separable;
+                            let g1v = ndf.g1(mu);
+                            let e = integrate_micro_normals(
+                                &ndf,
+                                Rule::standard(&[eta]),
+                                mu,
+                                spec.tolerance,
+                                |h| {
+                                    brdfbake::model::schlick_dielectric::integrands(
+                                        &ndf, smith, eta, mu, g1v, h,
+                                    )
+                                },
+                            );
                             (e.value.to_vec(), e.error.to_vec())
                         }
                         _ => {

@@ -14,6 +14,7 @@ pub mod ltc_probe;
 pub mod ltc_reference;
 pub mod ltc_rule;
 pub mod micro_normals;
+pub mod roughness_fibre;
 pub mod sheen_azimuth;
 pub mod sheen_polar;
 pub mod vgroove;

@@ -15,10 +15,12 @@
 use super::{TableKind, TableSpec, TexelResult};
 use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
 pub use crate::kernels::micro_normals::{phi_breaks, transmitted_horizon, MAX_ETAS};
+use crate::kernels::roughness_fibre::{roughness_fibre_with, ROUGHNESS_FIBRE};
 use crate::lut::Quantity;
 use crate::model::btdf::{
     albedo_integrands, integrands_many, BelowOne, MicroNormal, RoughDielectric, SmithForm,
 };
+use crate::model::fresnel::dielectric;
 use crate::model::{Fresnel, FresnelQuantity, Masking, Ndf, NdfKind};
 use crate::quadrature::cc1d::Estimator;
 use crate::quadrature::Estimate;
@@ -434,19 +436,81 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
     let kind = spec.kind;
     let ndfs = ndfs(spec);
     let (etas, mus) = etas_and_mus(spec);
+    // (the η < 1 slices go by roughness fibres: `roughness_fibres`)
+    let above: Vec<usize> = (0..etas.len()).filter(|&z| etas[z] >= 1.0).collect();
+    let per_texel = integrands_of(kind).0;
     Box::new(move |i, j| {
-        if kind == TableKind::DielectricBtdf {
-            return reflect_transmit_fibre_with(&ndfs[j], smith, &etas, &mus[i], tol)
+        let etas_above: Vec<f64> = above.iter().map(|&z| etas[z]).collect();
+        let mus_above: Vec<f64> = above.iter().map(|&z| mus[i][z]).collect();
+        let done: Vec<TexelResult> = if kind == TableKind::DielectricBtdf {
+            reflect_transmit_fibre_with(&ndfs[j], smith, &etas_above, &mus_above, tol)
                 .into_iter()
                 .map(|(value, error, evals)| TexelResult {
                     value: value.to_vec(),
                     error: error.to_vec(),
                     evals,
                 })
-                .collect();
+                .collect()
+        } else {
+            kind_fibre(&ndfs[j], smith, kind, &etas_above, &mus_above, tol)
+        };
+        let mut out = vec![TexelResult::exact(vec![0.0; per_texel]); etas.len()];
+        for (&z, r) in above.iter().zip(done) {
+            out[z] = r;
         }
-        kind_fibre(&ndfs[j], smith, kind, &etas, &mus[i], tol)
+        out
     })
+}
+
+/// The roughness-fibre path of the 3D dielectric kinds ([`super::RoughnessFibres`]): every
+/// η < 1 slice's texels at one view texel, up to [`ROUGHNESS_FIBRE`] roughnesses (in order
+/// of α) per rule of [`roughness_rule`]; evaluations counted at each group's first
+/// (narrowest) roughness.
+pub(crate) fn roughness_fibres(spec: &TableSpec) -> super::RoughnessFibres {
+    let tol = spec.tolerance;
+    let smith = smith_of(spec);
+    let kind = spec.kind;
+    let ndfs = ndfs(spec);
+    let (etas, mus) = etas_and_mus(spec);
+    super::RoughnessFibres {
+        slices: etas.iter().map(|&eta| eta < 1.0).collect(),
+        run: Box::new(move |i, z| {
+            let (eta, mu) = (etas[z], mus[i][z]);
+            if kind == TableKind::DielectricBtdf {
+                // R, T = F w_r, (1 − F) w_t (`BelowOne`)
+                roughness_fibre::<{ 2 * ROUGHNESS_FIBRE }, 2>(&ndfs, smith, eta, mu, tol, |c| {
+                    let f = dielectric(c, eta);
+                    [[f, 0.0], [0.0, 1.0 - f]]
+                })
+            } else {
+                // E = F w_r + (1 − F) w_t (`albedo_integrands`)
+                roughness_fibre::<ROUGHNESS_FIBRE, 1>(&ndfs, smith, eta, mu, tol, |c| {
+                    let f = dielectric(c, eta);
+                    [[f, 1.0 - f]]
+                })
+            }
+        }),
+    }
+}
+
+/// The texel results of every roughness in `ndfs` at one η < 1 and view cosine `mu`, in
+/// the order of `ndfs` ([`roughness_fibre_with`], `K` channels per texel).
+pub(crate) fn roughness_fibre<const N: usize, const K: usize>(
+    ndfs: &[Ndf],
+    smith: SmithForm,
+    eta: f64,
+    mu: f64,
+    tol: f64,
+    coef: impl Fn(f64) -> [[f64; 2]; K] + Copy,
+) -> Vec<TexelResult> {
+    roughness_fibre_with::<N, K>(ndfs, smith, eta, mu, tol, coef)
+        .into_iter()
+        .map(|e| TexelResult {
+            value: e.value.to_vec(),
+            error: e.error.to_vec(),
+            evals: e.evals,
+        })
+        .collect()
 }
 
 /// Whether a masking term is one the dielectric kinds take.

@@ -17,9 +17,12 @@
 //! tolerance). Validation is the dielectric kinds' (`dielectric.rs`: GGX, Smith masking, an
 //! η axis, views above the horizon; a critical-angle view axis).
 
-use super::dielectric::{eta_of_slice, etas_and_mus, fibre_groups_of, ndfs, smith_of, view_cosine};
+use super::dielectric::{
+    eta_of_slice, etas_and_mus, fibre_groups_of, ndfs, roughness_fibre, smith_of, view_cosine,
+};
 use super::{TableSpec, TexelResult};
 use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
+use crate::kernels::roughness_fibre::ROUGHNESS_FIBRE;
 use crate::lut::Channel;
 use crate::model::btdf::{Facet, MicroNormal, SmithForm};
 use crate::model::schlick_dielectric::{integrands, outer_schlick_weight, smooth_limit};
@@ -122,10 +125,10 @@ pub(crate) fn texel_fn(spec: &TableSpec) -> Box<dyn Fn([usize; 3]) -> TexelResul
     Box::new(move |idx| texel(&ndfs[idx[1]], smith, etas[idx[2]], mus[idx[0]][idx[2]], tol))
 }
 
-/// The fibre path ([`super::FibreFn`]): every slice of one (view texel, roughness), the η ≥ 1
-/// slices with the same view cosine in shared rules of up to [`FIBRE_SLICES`]
-/// ([`fibre_groups_of`]), each η < 1 slice alone; evaluations counted at each group's first
-/// slice.
+/// The fibre path ([`super::FibreFn`]): every η ≥ 1 slice of one (view texel, roughness),
+/// those with the same view cosine in shared rules of up to [`FIBRE_SLICES`]
+/// ([`fibre_groups_of`]); evaluations counted at each group's first slice. The η < 1 slices
+/// are left to [`roughness_fibres`].
 pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
     let tol = spec.tolerance;
     let smith = smith_of(spec);
@@ -136,7 +139,9 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
         let mut out = vec![TexelResult::exact(vec![0.0; 3]); etas.len()];
         for g in fibre_groups_of(&etas, mus, FIBRE_SLICES) {
             if let [z] = g[..] {
-                out[z] = texel(ndf, smith, etas[z], mus[z], tol);
+                if etas[z] >= 1.0 {
+                    out[z] = texel(ndf, smith, etas[z], mus[z], tol);
+                }
                 continue;
             }
             let group: Vec<f64> = g.iter().map(|&z| etas[z]).collect();
@@ -151,6 +156,26 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
         }
         out
     })
+}
+
+/// The roughness-fibre path ([`super::RoughnessFibres`]): every η < 1 slice's texels at one
+/// view texel by [`roughness_fibre`] (`dielectric.rs`).
+pub(crate) fn roughness_fibres(spec: &TableSpec) -> super::RoughnessFibres {
+    let tol = spec.tolerance;
+    let smith = smith_of(spec);
+    let ndfs = ndfs(spec);
+    let (etas, mus) = etas_and_mus(spec);
+    super::RoughnessFibres {
+        slices: etas.iter().map(|&eta| eta < 1.0).collect(),
+        run: Box::new(move |i, z| {
+            let eta = etas[z];
+            // A, B, T = (1 − s) w_r, s w_r, (1 − s) w_t (`integrands`)
+            roughness_fibre::<{ 3 * ROUGHNESS_FIBRE }, 3>(&ndfs, smith, eta, mus[i][z], tol, |c| {
+                let s = outer_schlick_weight(eta, c);
+                [[1.0 - s, 0.0], [s, 0.0], [0.0, 1.0 - s]]
+            })
+        }),
+    }
 }
 
 /// The smooth limit α = 0 of texel `idx` (`table::smooth`).

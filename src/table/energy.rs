@@ -215,6 +215,18 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> Option<super::FibreFn> {
     }
 }
 
+/// The roughness-fibre path ([`super::RoughnessFibres`]) of a table kind with a fibre path,
+/// where it has one: the η < 1 slices of the 3D dielectric kinds.
+pub(crate) fn roughness_fibres(spec: &TableSpec) -> Option<super::RoughnessFibres> {
+    match spec.kind {
+        TableKind::DielectricSchlick => Some(super::dielectric_schlick::roughness_fibres(spec)),
+        TableKind::DielectricBtdf | TableKind::DielectricAlbedo => {
+            Some(super::dielectric::roughness_fibres(spec))
+        }
+        _ => None,
+    }
+}
+
 /// Slices integrated together by one rule of [`fresnel_fibre_fn`] (its channel count).
 const FRESNEL_FIBRE_SLICES: usize = 8;
 

@@ -25,7 +25,7 @@ mod validate;
 
 pub use spec::{DfgLayout, LtcChannel, ModelSpec, Storage, TableKind, TableSpec};
 pub use texel::MISSES_SHOWN;
-pub(crate) use texel::{FibreFn, Misses, TexelResult};
+pub(crate) use texel::{FibreFn, Misses, RoughnessFibres, TexelResult};
 
 use crate::lut::{Channel, Lut};
 use crate::numfmt::num;
@@ -233,22 +233,12 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     } else {
         energy::fibre_fn(spec)
     };
+    // and the slices that go by roughness fibres instead
+    let rough = fibre.as_ref().and_then(|_| energy::roughness_fibres(spec));
     let blocks: Vec<Vec<TexelResult>> = if dense.is_some() {
         Vec::new()
     } else if let Some(fibre) = &fibre {
-        (0..dims[0] * dims[1])
-            .into_par_iter()
-            .with_min_len(1)
-            .map(|ij| {
-                if out_of_time() {
-                    return Vec::new();
-                }
-                // (every integral of the fibre shares one bounded budget: budget.rs)
-                with_budget(INTEGRAL_EVAL_BUDGET.saturating_mul(dims[2] as u64), || {
-                    fibre(ij % dims[0], ij / dims[0])
-                })
-            })
-            .collect()
+        vec![by_fibres(fibre, rough.as_ref(), dims, &out_of_time)]
     } else if by_column {
         let column = if albedo_columns {
             albedo::column_fn(spec)
@@ -377,9 +367,6 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     let result = |i: usize| -> (&[f64], &[f64], u64) {
         let r = if by_column {
             &blocks[i % dims[0]][i / dims[0]]
-        } else if fibre.is_some() {
-            let nxy = dims[0] * dims[1];
-            &blocks[i % nxy][i / nxy]
         } else {
             &blocks[0][i]
         };
@@ -410,6 +397,68 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
         error_estimate: err,
         evaluations: evals,
     })
+}
+
+/// The texel results of a table with a fibre path, in texel order (axis 0 fastest): one task
+/// per fibre along axis 2 (all slices of one (i, j)), and where the kind has roughness fibres
+/// one per fibre along axis 1 (all roughnesses of one (i, z)) for the slices they take, which
+/// the axis-2 fibres leave out. Every integral of a fibre shares one bounded budget
+/// (budget.rs); a task started after the deadline returns nothing (the caller then fails).
+fn by_fibres(
+    fibre: &FibreFn,
+    rough: Option<&RoughnessFibres>,
+    dims: [usize; 3],
+    out_of_time: &(dyn Fn() -> bool + Sync),
+) -> Vec<TexelResult> {
+    #[derive(Clone, Copy)]
+    enum Task {
+        Slices(usize, usize),
+        Roughnesses(usize, usize),
+    }
+    let [nx, ny, nz] = dims;
+    let by_roughness = |z: usize| rough.is_some_and(|r| r.slices[z]);
+    let mut tasks = Vec::new();
+    if (0..nz).any(|z| !by_roughness(z)) {
+        tasks.extend((0..nx * ny).map(|ij| Task::Slices(ij % nx, ij / nx)));
+    }
+    if let Some(r) = rough {
+        for z in (0..nz).filter(|&z| r.slices[z]) {
+            tasks.extend((0..nx).map(|i| Task::Roughnesses(i, z)));
+        }
+    }
+    let done: Vec<Vec<TexelResult>> = tasks
+        .par_iter()
+        .with_min_len(1)
+        .map(|&t| {
+            if out_of_time() {
+                return Vec::new();
+            }
+            match t {
+                Task::Slices(i, j) => {
+                    with_budget(INTEGRAL_EVAL_BUDGET.saturating_mul(nz as u64), || {
+                        fibre(i, j)
+                    })
+                }
+                Task::Roughnesses(i, z) => {
+                    let r = rough.expect("roughness fibres");
+                    with_budget(INTEGRAL_EVAL_BUDGET.saturating_mul(ny as u64), || {
+                        (r.run)(i, z)
+                    })
+                }
+            }
+        })
+        .collect();
+    let mut out = vec![TexelResult::exact(Vec::new()); nx * ny * nz];
+    for (t, results) in tasks.into_iter().zip(done) {
+        for (k, r) in results.into_iter().enumerate() {
+            match t {
+                Task::Slices(i, j) if !by_roughness(k) => out[i + nx * (j + ny * k)] = r,
+                Task::Slices(..) => {}
+                Task::Roughnesses(i, z) => out[i + nx * (k + ny * z)] = r,
+            }
+        }
+    }
+    out
 }
 
 /// [`bake_with`], and for an `ltc` table with matrix channels the per-texel fit error

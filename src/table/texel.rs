@@ -1,5 +1,5 @@
 //! What the texel code of every table kind shares: a texel's result (values, error
-//! estimates, evaluations), the fibre of texels along the Fresnel axis, the collection of
+//! estimates, evaluations), the fibres of texels along the Fresnel and roughness axes, the collection of
 //! texels that missed their tolerance, and the BRDF of each roughness texel. A leaf of
 //! [`crate::table`]: the kinds and the texel loop of `mod.rs` use it.
 
@@ -35,6 +35,16 @@ impl TexelResult {
 /// along axis 2 (the Fresnel axis) share every quadrature node but a per-slice factor, so
 /// that one task integrates them together (`energy::fibre_fn`).
 pub(crate) type FibreFn = Box<dyn Fn(usize, usize) -> Vec<TexelResult> + Sync>;
+
+/// A table kind's roughness-fibre path: the texel results of the line of texels along axis 1
+/// (every roughness) at axis-0 index `i` and slice `z`, in roughness order, for the slices
+/// `slices` marks. For kinds whose integrals at one view and slice have the same panel
+/// breaks at every roughness (the η < 1 dielectric slices: `dielectric_schlick`); the kind's
+/// [`FibreFn`] leaves those slices' texels to it.
+pub(crate) struct RoughnessFibres {
+    pub slices: Vec<bool>,
+    pub run: Box<dyn Fn(usize, usize) -> Vec<TexelResult> + Sync>,
+}
 
 /// Collects the texel channels whose estimate exceeds `limit`: their count and the
 /// [`MISSES_SHOWN`] largest (ties: lowest texel index first, so the list is deterministic).
