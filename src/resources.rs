@@ -210,25 +210,30 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
         // above was before the closed-form kinks and Clenshaw–Curtis panels of
         // src/table/dielectric.rs). By fibres (fib6, 2026-11-30, `examples/fibre_check.rs`):
         // the η ≥ 1 slices of one (μ, r) share one rule, 2,812 nodes per group of 4 (~700
-        // per texel, nodes counted once), the η < 1 slices stay one rule each, 6,963–7,897
-        // per texel: 4,065 per texel on the preset (half its slices below 1)
+        // per texel, nodes counted once). The η < 1 slices go by roughness fibres
+        // (src/kernels/roughness_fibre.rs), whose nodes serve up to 15 texels at ~3× the cost
+        // of one, so they are counted by CPU time: 157 µs per texel on eevee-btdf-split-sum-ggx,
+        // 1,570 evaluations at 100 ns (2026-12-03, a slow phase of the benchmark machine):
+        // counted as 2,000
         K::DielectricBtdf => {
             let frac = below_one_fraction(spec);
-            (7_500.0 * frac + 750.0 * (1.0 - frac), 0.0)
+            (2_000.0 * frac + 750.0 * (1.0 - frac), 0.0)
         }
-        // dielectric-albedo: measured on Cycles' glass_E layout; η < 1 slices one rule each
+        // dielectric-albedo: measured on Cycles' glass_E layout; η < 1 by roughness fibres,
+        // by CPU time as above: 249 µs per texel on cycles-glass-inv-e (tolerance 1e-7,
+        // height-correlated), counted as 2,500
         K::DielectricAlbedo => {
             let frac = below_one_fraction(spec);
-            (7_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
+            (2_500.0 * frac + 1_000.0 * (1.0 - frac), 0.0)
         }
         K::DielectricAlbedoAvg => (100_000.0, 0.0),
-        // dielectric-schlick: η < 1 one rule per texel with dielectric-btdf's breakpoints,
-        // measured 6,034 per texel (eevee-bsdf-ggx); η ≥ 1 fibres of 8 slices per rule,
-        // measured 324 nodes per texel (eevee-btdf-ggx, 2026-12-02), each node with 8
-        // refractions: counted as 400
+        // dielectric-schlick: η < 1 by roughness fibres, by CPU time as for dielectric-btdf:
+        // 171 µs per texel on eevee-bsdf-ggx (2026-12-03), counted as 2,000; η ≥ 1 fibres of
+        // 8 slices per rule, measured 324 nodes per texel (eevee-btdf-ggx, 2026-12-02), each
+        // node with 8 refractions: counted as 400
         K::DielectricSchlick => {
             let frac = below_one_fraction(spec);
-            (6_000.0 * frac + 400.0 * (1.0 - frac), 0.0)
+            (2_000.0 * frac + 400.0 * (1.0 - frac), 0.0)
         }
         // schlick-weight-*: measured 1,165 (exponent axis) and 1,186 (eta axis) per texel on
         // the cycles-ggx-gen-schlick-* presets (2026-12-02, fibres of 8 slices)
@@ -285,8 +290,8 @@ fn evals_per_texel(t: &PresetTable) -> (f64, f64) {
     }
 }
 
-/// The fraction of a dielectric table's slices whose relative index η < 1 (each integrated
-/// by its own rule, the costly ones); all of them without a fresnel axis, none on a fresnel
+/// The fraction of a dielectric table's slices whose relative index η < 1 (integrated by
+/// roughness fibres, the costly ones); all of them without a fresnel axis, none on a fresnel
 /// axis that does not give η (which the dielectric kinds refuse).
 fn below_one_fraction(spec: &crate::table::TableSpec) -> f64 {
     spec.axes.get(2).map_or(1.0, |z| {
