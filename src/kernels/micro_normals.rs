@@ -496,8 +496,8 @@ pub struct Rule<'a> {
     /// The roughnesses of an integrand that carries several lobes (a fibre along the
     /// roughness axis; empty: the NDF's own). The rule's variable is the warp of the NDF
     /// passed, which should be the narrowest; the lobes' grazing-view layers get panel
-    /// breaks ([`layer_cosine`]: the widest lobe's, then each where x has doubled), and the
-    /// range ends at the equator by the θ-tail ([`ThetaTail`], also with a critical angle:
+    /// breaks (`layer_cosine`: the widest lobe's, then each where x has doubled), and the
+    /// range ends at the equator by the θ-tail (`ThetaTail`, also with a critical angle:
     /// beyond the narrow lobe's scale the wide lobes are smooth in θh, not in its u).
     pub alphas: &'a [f64],
 }

@@ -7,7 +7,7 @@
 //! cone v·h = √(1 − η²), the reflected and transmitted directions' horizons, and in φ where
 //! those meet. None depends on α. So for up to [`ROUGHNESS_FIBRE`] GGX lobes the integrands
 //! are the channels of one rule whose nodes compute v·h, the Fresnel or Schlick factor and
-//! the refraction once, and only D and the masking per lobe ([`Lobes::weights`], branch-free
+//! the refraction once, and only D and the masking per lobe (`Lobes::weights`, branch-free
 //! so that it vectorizes). The rule's variable is the narrowest lobe's warp
 //! u = asinh(tan θh/α) up to θh = 45° and θh itself beyond (`Rule::alphas`); every lobe
 //! whose view is grazing on its own scale brings its own layer break in φ. A panel is refined
