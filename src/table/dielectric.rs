@@ -463,9 +463,9 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
 }
 
 /// The roughness-fibre path of the 3D dielectric kinds ([`super::RoughnessFibres`]): every
-/// η < 1 slice's texels at one view texel, up to [`ROUGHNESS_FIBRE`] roughnesses (in order
-/// of α) per rule of [`roughness_rule`]; evaluations counted at each group's first
-/// (narrowest) roughness.
+/// η < 1 slice's texels at one view texel by [`roughness_fibre_with`] (runs of up to
+/// [`ROUGHNESS_FIBRE`] roughnesses in order of α per rule); evaluations counted at each
+/// run's first (narrowest) roughness.
 pub(crate) fn roughness_fibres(spec: &TableSpec) -> super::RoughnessFibres {
     let tol = spec.tolerance;
     let smith = smith_of(spec);
