@@ -463,54 +463,50 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
 }
 
 /// The roughness-fibre path of the 3D dielectric kinds ([`super::RoughnessFibres`]): every
-/// η < 1 slice's texels at one view texel by [`roughness_fibre_with`] (runs of up to
-/// [`ROUGHNESS_FIBRE`] roughnesses in order of α per rule); evaluations counted at each
-/// run's first (narrowest) roughness.
+/// η < 1 slice's texels at one view texel by [`roughness_fibres_with`]: `dielectric-btdf`'s
+/// R, T = F w_r, (1 − F) w_t (`BelowOne`), `dielectric-albedo`'s E = F w_r + (1 − F) w_t
+/// (`albedo_integrands`).
 pub(crate) fn roughness_fibres(spec: &TableSpec) -> super::RoughnessFibres {
+    if spec.kind == TableKind::DielectricBtdf {
+        roughness_fibres_with::<{ 2 * ROUGHNESS_FIBRE }, 2>(spec, |eta, c| {
+            let f = dielectric(c, eta);
+            [[f, 0.0], [0.0, 1.0 - f]]
+        })
+    } else {
+        roughness_fibres_with::<ROUGHNESS_FIBRE, 1>(spec, |eta, c| {
+            let f = dielectric(c, eta);
+            [[f, 1.0 - f]]
+        })
+    }
+}
+
+/// A dielectric kind's roughness-fibre path: every η < 1 slice's texels at one view texel
+/// by [`roughness_fibre_with`] (runs of up to [`ROUGHNESS_FIBRE`] roughnesses in order of α
+/// per rule, evaluations counted at each run's first, narrowest roughness), `K` channels per
+/// texel whose coefficients of w_r and w_t at relative index η and v·h = c are
+/// `coef(η, c)`; `N` = `K`·[`ROUGHNESS_FIBRE`].
+pub(crate) fn roughness_fibres_with<const N: usize, const K: usize>(
+    spec: &TableSpec,
+    coef: fn(f64, f64) -> [[f64; 2]; K],
+) -> super::RoughnessFibres {
     let tol = spec.tolerance;
     let smith = smith_of(spec);
-    let kind = spec.kind;
     let ndfs = ndfs(spec);
     let (etas, mus) = etas_and_mus(spec);
     super::RoughnessFibres {
         slices: etas.iter().map(|&eta| eta < 1.0).collect(),
         run: Box::new(move |i, z| {
-            let (eta, mu) = (etas[z], mus[i][z]);
-            if kind == TableKind::DielectricBtdf {
-                // R, T = F w_r, (1 − F) w_t (`BelowOne`)
-                roughness_fibre::<{ 2 * ROUGHNESS_FIBRE }, 2>(&ndfs, smith, eta, mu, tol, |c| {
-                    let f = dielectric(c, eta);
-                    [[f, 0.0], [0.0, 1.0 - f]]
+            let eta = etas[z];
+            roughness_fibre_with::<N, K>(&ndfs, smith, eta, mus[i][z], tol, |c| coef(eta, c))
+                .into_iter()
+                .map(|e| TexelResult {
+                    value: e.value.to_vec(),
+                    error: e.error.to_vec(),
+                    evals: e.evals,
                 })
-            } else {
-                // E = F w_r + (1 − F) w_t (`albedo_integrands`)
-                roughness_fibre::<ROUGHNESS_FIBRE, 1>(&ndfs, smith, eta, mu, tol, |c| {
-                    let f = dielectric(c, eta);
-                    [[f, 1.0 - f]]
-                })
-            }
+                .collect()
         }),
     }
-}
-
-/// The texel results of every roughness in `ndfs` at one η < 1 and view cosine `mu`, in
-/// the order of `ndfs` ([`roughness_fibre_with`], `K` channels per texel).
-pub(crate) fn roughness_fibre<const N: usize, const K: usize>(
-    ndfs: &[Ndf],
-    smith: SmithForm,
-    eta: f64,
-    mu: f64,
-    tol: f64,
-    coef: impl Fn(f64) -> [[f64; 2]; K] + Copy,
-) -> Vec<TexelResult> {
-    roughness_fibre_with::<N, K>(ndfs, smith, eta, mu, tol, coef)
-        .into_iter()
-        .map(|e| TexelResult {
-            value: e.value.to_vec(),
-            error: e.error.to_vec(),
-            evals: e.evals,
-        })
-        .collect()
 }
 
 /// Whether a masking term is one the dielectric kinds take.

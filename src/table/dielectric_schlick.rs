@@ -18,7 +18,7 @@
 //! η axis, views above the horizon; a critical-angle view axis).
 
 use super::dielectric::{
-    eta_of_slice, etas_and_mus, fibre_groups_of, ndfs, roughness_fibre, smith_of, view_cosine,
+    eta_of_slice, etas_and_mus, fibre_groups_of, ndfs, roughness_fibres_with, smith_of, view_cosine,
 };
 use super::{TableSpec, TexelResult};
 use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
@@ -159,23 +159,13 @@ pub(crate) fn fibre_fn(spec: &TableSpec) -> super::FibreFn {
 }
 
 /// The roughness-fibre path ([`super::RoughnessFibres`]): every η < 1 slice's texels at one
-/// view texel by [`roughness_fibre`] (`dielectric.rs`).
+/// view texel by [`roughness_fibres_with`] (`dielectric.rs`).
 pub(crate) fn roughness_fibres(spec: &TableSpec) -> super::RoughnessFibres {
-    let tol = spec.tolerance;
-    let smith = smith_of(spec);
-    let ndfs = ndfs(spec);
-    let (etas, mus) = etas_and_mus(spec);
-    super::RoughnessFibres {
-        slices: etas.iter().map(|&eta| eta < 1.0).collect(),
-        run: Box::new(move |i, z| {
-            let eta = etas[z];
-            // A, B, T = (1 − s) w_r, s w_r, (1 − s) w_t (`integrands`)
-            roughness_fibre::<{ 3 * ROUGHNESS_FIBRE }, 3>(&ndfs, smith, eta, mus[i][z], tol, |c| {
-                let s = outer_schlick_weight(eta, c);
-                [[1.0 - s, 0.0], [s, 0.0], [0.0, 1.0 - s]]
-            })
-        }),
-    }
+    // A, B, T = (1 − s) w_r, s w_r, (1 − s) w_t (`integrands`)
+    roughness_fibres_with::<{ 3 * ROUGHNESS_FIBRE }, 3>(spec, |eta, c| {
+        let s = outer_schlick_weight(eta, c);
+        [[1.0 - s, 0.0], [s, 0.0], [0.0, 1.0 - s]]
+    })
 }
 
 /// The smooth limit α = 0 of texel `idx` (`table::smooth`).
