@@ -54,7 +54,7 @@
 use crate::hemisphere::{nested_tolerances, tan_theta_h_max};
 use crate::model::btdf::MicroNormal;
 use crate::model::Ndf;
-use crate::quadrature::cc1d::{cc_or_adaptive_with, Estimator};
+use crate::quadrature::cc1d::{cc_or_adaptive_into, Estimator};
 use crate::quadrature::{Estimate, Tolerance};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -84,11 +84,12 @@ pub(crate) struct Break {
     pub singular: bool,
 }
 
-/// ∫ₐᵇ f over one panel to absolute tolerance `tol` ([`cc_or_adaptive`] up to `level`). A
+/// ∫ₐᵇ f over one panel to absolute tolerance `tol` ([`cc_or_adaptive_into`] up to `level`;
+/// `f` writes its values into the slot it is given). A
 /// square-root behaviour f ~ √(x − a) at a singular end becomes smooth under
 /// x = a + (b − a) t², dx = 2(b − a) t dt (likewise at b); with both ends singular the panel
 /// is halved first. Without it the rule would converge only algebraically towards the kink.
-fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
+fn panel<const N: usize, F: FnMut(f64, &mut [f64; N])>(
     f: &mut F,
     a: Break,
     b: Break,
@@ -99,12 +100,11 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
     let (x0, x1) = (a.x, b.x);
     let w = x1 - x0;
     match (a.singular, b.singular) {
-        (false, false) => cc_or_adaptive_with(&mut *f, x0, x1, tol, level, est),
-        (true, false) => cc_or_adaptive_with(
-            |t: f64| {
-                let mut y = f(x0 + w * t * t);
+        (false, false) => cc_or_adaptive_into(&mut *f, x0, x1, tol, level, est),
+        (true, false) => cc_or_adaptive_into(
+            |t: f64, y: &mut [f64; N]| {
+                f(x0 + w * t * t, y);
                 y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
-                y
             },
             0.0,
             1.0,
@@ -112,11 +112,10 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
             level,
             est,
         ),
-        (false, true) => cc_or_adaptive_with(
-            |t: f64| {
-                let mut y = f(x1 - w * t * t);
+        (false, true) => cc_or_adaptive_into(
+            |t: f64, y: &mut [f64; N]| {
+                f(x1 - w * t * t, y);
                 y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
-                y
             },
             0.0,
             1.0,
@@ -150,7 +149,7 @@ fn panel<const N: usize, F: FnMut(f64) -> [f64; N]>(
 /// Chebyshev series converges only like ρ⁻ⁿ with ρ − 1 ~ √(8 d/(b − a)), d the distance
 /// of s from the panel. Under x = s + (b − s) t² (s ≤ a; mirrored for s ≥ b) the point
 /// is no longer singular, for t ∈ [√((a − s)/(b − s)), 1].
-fn panel_about<const N: usize, F: FnMut(f64) -> [f64; N]>(
+fn panel_about<const N: usize, F: FnMut(f64, &mut [f64; N])>(
     f: &mut F,
     s: f64,
     a: f64,
@@ -165,11 +164,10 @@ fn panel_about<const N: usize, F: FnMut(f64) -> [f64; N]>(
     } else {
         (s - a, -1.0, ((s - b) / (s - a)).sqrt())
     };
-    cc_or_adaptive_with(
-        |t: f64| {
-            let mut y = f(s + sign * w * t * t);
+    cc_or_adaptive_into(
+        |t: f64, y: &mut [f64; N]| {
+            f(s + sign * w * t * t, y);
             y.iter_mut().for_each(|v| *v *= 2.0 * w * t);
-            y
         },
         t0,
         1.0,
@@ -235,19 +233,27 @@ impl Breaks {
 /// exponential tail up to u = 30, would get a tiny share and need the finest rule for
 /// nothing.
 pub(crate) fn panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
-    f: F,
+    mut f: F,
     breaks: Breaks,
     tol: Tolerance,
     level: usize,
     est: Estimator,
 ) -> Estimate<N> {
-    panels_reaching(f, breaks, tol, level, est, 0.0)
+    panels_reaching(
+        |x, y: &mut [f64; N]| *y = f(x),
+        breaks,
+        tol,
+        level,
+        est,
+        0.0,
+    )
 }
 
 /// [`panels`] where a panel with no square-root end but a square-root break outside it
 /// closer than `reach` times its length is integrated in the variable of [`panel_about`]
-/// about the nearest such break (`reach` 0: never).
-pub(crate) fn panels_reaching<const N: usize, F: FnMut(f64) -> [f64; N]>(
+/// about the nearest such break (`reach` 0: never). `f` writes its values into the slot it
+/// is given.
+pub(crate) fn panels_reaching<const N: usize, F: FnMut(f64, &mut [f64; N])>(
     mut f: F,
     breaks: Breaks,
     tol: Tolerance,
@@ -533,6 +539,21 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
     tol: f64,
     g: G,
 ) -> Estimate<N> {
+    integrate_micro_normals_into(ndf, rule, mu, tol, |h: &MicroNormal, y: &mut [f64; N]| {
+        *y = g(h)
+    })
+}
+
+/// [`integrate_micro_normals`] whose integrand writes its values into the slot it is given
+/// (zeroed), so that many channels (a roughness fibre's) are not copied on the way to the
+/// rule ([`crate::quadrature::cc1d::nested_cc_into`]); the same arithmetic, the same bits.
+pub fn integrate_micro_normals_into<const N: usize, G: Fn(&MicroNormal, &mut [f64; N])>(
+    ndf: &Ndf,
+    rule: Rule,
+    mu: f64,
+    tol: f64,
+    g: G,
+) -> Estimate<N> {
     let Rule {
         etas,
         cones,
@@ -617,7 +638,7 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
             }
         }
         let e = panels_reaching(
-            |u: f64| {
+            |u: f64, y: &mut [f64; N]| {
                 let (cos_h, sin_h, jac) = match tail {
                     Some(t) if u > t.s => t.at(u),
                     _ => {
@@ -639,11 +660,10 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
                     sin2_h: sin_h * sin_h,
                     v_dot_h: sin_v * sin_h * cp + mu * cos_h,
                 };
-                let mut y = g(&h);
+                g(&h, y);
                 for v in y.iter_mut() {
                     *v *= jac;
                 }
-                y
             },
             breaks,
             inner_tol,
@@ -690,7 +710,7 @@ pub fn integrate_micro_normals<const N: usize, G: Fn(&MicroNormal) -> [f64; N]>(
         }
     }
     let e = panels_reaching(
-        phi_integrand,
+        |phi, y: &mut [f64; N]| *y = phi_integrand(phi),
         breaks,
         outer_tol,
         OUTER_LEVEL,

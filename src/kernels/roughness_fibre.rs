@@ -20,7 +20,7 @@
 //! 2.4× less time; the bake of `eevee-bsdf-ggx` took 5.3 s instead of 12.1 s (2 threads,
 //! 2026-12-03).
 
-use super::micro_normals::{integrate_micro_normals, Rule};
+use super::micro_normals::{integrate_micro_normals_into, Rule};
 use crate::model::btdf::{MicroNormal, SmithForm};
 use crate::model::{Ndf, NdfKind};
 use crate::quadrature::Estimate;
@@ -118,33 +118,38 @@ pub fn roughness_rule<const N: usize, const K: usize>(
         alphas: &alphas,
         ..Rule::standard(&etas)
     };
-    integrate_micro_normals(narrowest, rule, mu, tol, |h: &MicroNormal| {
-        let mut y = [0.0; N];
-        let c = h.v_dot_h;
-        if c <= 0.0 || mu1 <= 0.0 {
-            return y;
-        }
-        // the cosines of the reflected and refracted directions to the macro-surface, 0
-        // where a direction does not leave on its own side (its masking vanishes there);
-        // refraction l_t = (c/η − cos θt) h − v/η (Walter et al. 2007, eq. 40)
-        let x_r = (2.0 * c * h.n_dot_h - mu1).clamp(0.0, 1.0);
-        let s2t = (1.0 - c * c) / (eta * eta);
-        let x_t = if s2t < 1.0 {
-            (mu1 / eta - (c / eta - (1.0 - s2t).sqrt()) * h.n_dot_h).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let mut w = [[0.0; LANES]; 2];
-        lobes.weights(h, c, [x_r, x_t], &mut w);
-        let [wr, wt] = w;
-        let ab = coef(c);
-        for (k, y) in y.chunks_exact_mut(K).take(ndfs.len()).enumerate() {
-            for (y, &[a, b]) in y.iter_mut().zip(&ab) {
-                *y = a * wr[k] + b * wt[k];
+    integrate_micro_normals_into(
+        narrowest,
+        rule,
+        mu,
+        tol,
+        |h: &MicroNormal, y: &mut [f64; N]| {
+            // (y is zeroed: channels beyond the lobes' stay 0)
+            let c = h.v_dot_h;
+            if c <= 0.0 || mu1 <= 0.0 {
+                return;
             }
-        }
-        y
-    })
+            // the cosines of the reflected and refracted directions to the macro-surface, 0
+            // where a direction does not leave on its own side (its masking vanishes there);
+            // refraction l_t = (c/η − cos θt) h − v/η (Walter et al. 2007, eq. 40)
+            let x_r = (2.0 * c * h.n_dot_h - mu1).clamp(0.0, 1.0);
+            let s2t = (1.0 - c * c) / (eta * eta);
+            let x_t = if s2t < 1.0 {
+                (mu1 / eta - (c / eta - (1.0 - s2t).sqrt()) * h.n_dot_h).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let mut w = [[0.0; LANES]; 2];
+            lobes.weights(h, c, [x_r, x_t], &mut w);
+            let [wr, wt] = w;
+            let ab = coef(c);
+            for (k, y) in y.chunks_exact_mut(K).take(ndfs.len()).enumerate() {
+                for (y, &[a, b]) in y.iter_mut().zip(&ab) {
+                    *y = a * wr[k] + b * wt[k];
+                }
+            }
+        },
+    )
 }
 
 /// The per-roughness constants of [`roughness_rule`]'s GGX lobes, in fixed-size arrays
