@@ -48,7 +48,7 @@
 use super::micro_normals::{panels, Breaks};
 use crate::model::btdf::SmithForm;
 use crate::model::fresnel::dielectric;
-use crate::model::Ndf;
+use crate::model::{Ndf, NdfKind};
 use crate::quadrature::cc1d::Estimator;
 use crate::quadrature::{Estimate, Tolerance};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -122,8 +122,13 @@ pub fn average_albedo<const N: usize>(
     tol: f64,
 ) -> Estimate<N> {
     debug_assert!(etas.len() <= N);
+    assert!(
+        ndf.kind() == NdfKind::Ggx,
+        "GGX only (the masking is GGX's)"
+    );
     debug_assert!(etas.len() == 1 || etas.iter().all(|&e| e >= 1.0));
     let alpha = ndf.alpha();
+    let a2 = alpha * alpha;
     let below = etas.iter().copied().find(|&e| e < 1.0);
     // ∫₀¹ (2/π) √(s² + α²(1 − s²)) ds ≤ (2/π) max(1, α)
     let weight_total = 2.0 / PI * alpha.max(1.0);
@@ -137,7 +142,7 @@ pub fn average_albedo<const N: usize>(
     // Φ(θh) per index
     let phi_of = |cos_h: f64, sin_h: f64| -> [f64; N] {
         // the inner integrands at one c: the range ends and G per direction
-        let g = |nv: f64, nl: f64| smith.g(ndf.g1(nv.min(1.0)), ndf.g1(nl.min(1.0)));
+        let g = |nv: f64, nl: f64| smith.ggx(a2, nv, nl);
         let middle = |c: f64| -> [f64; N] {
             let mut out = [0.0; N];
             let s2 = (1.0 - c) * (1.0 + c);
@@ -332,7 +337,6 @@ pub fn average_albedo<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::NdfKind;
 
     /// Cycles' clamped roughness (α = 1e-8) at its tolerance 1e-7: E_avg within the tolerance
     /// of the smooth limit 1 (a smooth interface reflects or transmits everything; masking

@@ -59,6 +59,28 @@ impl SmithForm {
         }
     }
 
+    /// G of GGX with α² = `a2` for a view and a direction whose cosines to the
+    /// macro-surface are `nv` and `nl` (clamped to 1; 0 if either is ≤ 0), in one division:
+    /// with G1(x) = 2x/(x + r(x)), r(x) = √(α² + (1 − α²)x²) (`Ndf::g1`), the separable form
+    /// is 4 nv nl/((nv + r_v)(nl + r_l)) and the height-correlated G1v G1l/(G1v + G1l −
+    /// G1v G1l) = 2 nv nl/(nv r_l + nl r_v), a sum of positive terms (no cancellation).
+    /// [`SmithForm::g`] of two `Ndf::g1` to a few roundings (tested), for the inner
+    /// integrals of `dielectric-albedo-avg`, where the three divisions of that composition
+    /// were a fifth of the time.
+    #[inline]
+    pub fn ggx(self, a2: f64, nv: f64, nl: f64) -> f64 {
+        if nv <= 0.0 || nl <= 0.0 {
+            return 0.0;
+        }
+        let (nv, nl) = (nv.min(1.0), nl.min(1.0));
+        let r = |x: f64| (a2 + (1.0 - a2) * x * x).sqrt();
+        let (rv, rl) = (r(nv), r(nl));
+        match self {
+            SmithForm::Separable => 4.0 * nv * nl / ((nv + rv) * (nl + rl)),
+            SmithForm::HeightCorrelated => 2.0 * nv * nl / (nv * rl + nl * rv),
+        }
+    }
+
     /// G of a view with `G1(n·v) = g1v` and a direction with `G1(|n·l|) = g1l`.
     #[inline]
     pub fn g(self, g1v: f64, g1l: f64) -> f64 {
@@ -374,6 +396,32 @@ impl BelowOne {
 mod tests {
     use super::*;
     use crate::model::NdfKind;
+
+    /// [`SmithForm::ggx`] against [`SmithForm::g`] of two `Ndf::g1` over roughnesses from
+    /// Cycles' clamp (α = 1e-8) to 1, cosines from 1e-9 to beyond 1, both forms: the same
+    /// quantity rearranged, so equal to a few roundings (1e-14 relative; every term is
+    /// positive, so no cancellation amplifies them), and exactly 0 where a cosine is ≤ 0.
+    #[test]
+    fn ggx_masking_in_one_division_is_the_composed_form() {
+        let xs: [f64; 11] = [
+            -0.5, 0.0, 1e-9, 1e-4, 0.01, 0.2, 0.5, 0.9, 0.999_999, 1.0, 1.2,
+        ];
+        for alpha in [1e-8, 1e-3, 0.1, 0.5, 0.9, 1.0] {
+            let ndf = Ndf::new(NdfKind::Ggx, alpha).unwrap();
+            for form in [SmithForm::Separable, SmithForm::HeightCorrelated] {
+                for &nv in &xs {
+                    for &nl in &xs {
+                        let want = form.g(ndf.g1(nv.min(1.0)), ndf.g1(nl.min(1.0)));
+                        let got = form.ggx(alpha * alpha, nv, nl);
+                        assert!(
+                            (got - want).abs() <= 1e-14 * want,
+                            "{form:?} alpha {alpha} nv {nv} nl {nl}: {got} vs {want}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     /// [`BelowOne`] against [`integrands_many`] and [`albedo_integrands`] over a grid of
     /// micro-normals, views, indices below 1, roughnesses and both masking forms. They are
