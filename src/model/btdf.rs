@@ -285,73 +285,77 @@ impl Facet {
         let nlt = (self.c / eta - ct) * m.n_dot_h - n_dot_v / eta;
         (nlt < 0.0).then(|| (smith.g(g1v, ndf.g1((-nlt).min(1.0))), ct))
     }
+}
 
-    /// The G of [`Facet::refraction`] (0 where it is `None`) into every relative index of
-    /// `etas` at once, for GGX with α² = `a2` (`a2` as `Ndf::g1` forms it, α·α): the same
-    /// operations in the same order, with the branches turned into selections, so that
-    /// the loop over the indices vectorizes; on x86-64 with AVX2 it is compiled for it (only
-    /// correctly rounded operations, none fused: the same bits as the portable build and as
-    /// `refraction`, tested). Used by the η fibres of `dielectric-schlick`, where the
-    /// refractions one at a time were half of the time.
+/// The refraction G of [`Facet::refraction`] into up to `L` relative indices at once (0 where
+/// it is `None`), for GGX: the rule's constants, and per micro-normal one loop over the
+/// indices with the same operations in the same order as `refraction` and its branches
+/// turned into selections, so that it vectorizes; on x86-64 with AVX2 it is compiled for it
+/// (only correctly rounded operations, none fused: the same bits as the portable build and as
+/// `refraction`, tested). Used by the η fibres of `dielectric-schlick`, where the refractions
+/// one at a time were half of the time.
+#[derive(Clone, Copy, Debug)]
+pub struct GgxRefractions<const L: usize> {
+    /// α² as `Ndf::g1` forms it (α·α)
+    a2: f64,
+    height_correlated: bool,
+    g1v: f64,
+    n_dot_v: f64,
+    /// every lane an index (lanes beyond the indices given repeat the last one)
+    etas: [f64; L],
+}
+
+impl<const L: usize> GgxRefractions<L> {
+    /// For the GGX lobe `ndf`, masking `smith`, a view with n·v = `n_dot_v` and
+    /// G1(n·v) = `g1v`, and the indices `etas` (1 to `L` of them).
+    pub fn new(ndf: &Ndf, smith: SmithForm, g1v: f64, n_dot_v: f64, etas: &[f64]) -> Self {
+        assert!(
+            ndf.kind() == super::NdfKind::Ggx && !etas.is_empty() && etas.len() <= L,
+            "GGX, 1 to {L} indices"
+        );
+        GgxRefractions {
+            a2: ndf.alpha() * ndf.alpha(),
+            height_correlated: smith == SmithForm::HeightCorrelated,
+            g1v,
+            n_dot_v,
+            etas: std::array::from_fn(|k| etas[k.min(etas.len() - 1)]),
+        }
+    }
+
+    /// Per lane, the G of the facet `f` of micro-normal `m`'s refraction into that lane's
+    /// index.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
-    pub fn ggx_refractions<const L: usize>(
-        &self,
-        a2: f64,
-        smith: SmithForm,
-        g1v: f64,
-        etas: &[f64; L],
-        n_dot_v: f64,
-        m: &MicroNormal,
-    ) -> [f64; L] {
+    pub fn g(&self, f: &Facet, m: &MicroNormal) -> [f64; L] {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked above), all that the variant requires.
-            return unsafe { self.ggx_refractions_avx2(a2, smith, g1v, etas, n_dot_v, m) };
+            // SAFETY: the CPU has AVX2 (checked above), all that `g_avx2` requires.
+            return unsafe { self.g_avx2(f, m) };
         }
-        self.ggx_refractions_portable(a2, smith, g1v, etas, n_dot_v, m)
+        self.g_portable(f, m)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    #[allow(clippy::too_many_arguments)]
-    unsafe fn ggx_refractions_avx2<const L: usize>(
-        &self,
-        a2: f64,
-        smith: SmithForm,
-        g1v: f64,
-        etas: &[f64; L],
-        n_dot_v: f64,
-        m: &MicroNormal,
-    ) -> [f64; L] {
-        self.ggx_refractions_portable(a2, smith, g1v, etas, n_dot_v, m)
+    unsafe fn g_avx2(&self, f: &Facet, m: &MicroNormal) -> [f64; L] {
+        self.g_portable(f, m)
     }
 
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn ggx_refractions_portable<const L: usize>(
-        &self,
-        a2: f64,
-        smith: SmithForm,
-        g1v: f64,
-        etas: &[f64; L],
-        n_dot_v: f64,
-        m: &MicroNormal,
-    ) -> [f64; L] {
+    fn g_portable(&self, f: &Facet, m: &MicroNormal) -> [f64; L] {
         let mut out = [0.0; L];
-        let hc = smith == SmithForm::HeightCorrelated;
-        for (o, &eta) in out.iter_mut().zip(etas) {
-            let s2t = (1.0 - self.c * self.c) / (eta * eta);
+        let (a2, g1v, c) = (self.a2, self.g1v, f.c);
+        for (o, &eta) in out.iter_mut().zip(&self.etas) {
+            let s2t = (1.0 - c * c) / (eta * eta);
             // (where s2t ≥ 1, total internal reflection: computed at s2t = 1, then dropped)
             let ct = (1.0 - s2t.min(1.0)).sqrt();
-            let nlt = (self.c / eta - ct) * m.n_dot_h - n_dot_v / eta;
+            let nlt = (c / eta - ct) * m.n_dot_h - self.n_dot_v / eta;
             // Ndf::g1 of GGX at x = min(−n·l_t, 1): 1 at x = 1
             let x = (-nlt).min(1.0);
             let g1 = 2.0 * x / (x + (a2 + (1.0 - a2) * x * x).sqrt());
             let g1 = if x >= 1.0 { 1.0 } else { g1 };
             // SmithForm::g
             let p = g1v * g1;
-            let g = if hc {
+            let g = if self.height_correlated {
                 let q = p / (g1v + g1 - p);
                 if p <= 0.0 {
                     0.0
@@ -477,7 +481,7 @@ mod tests {
     use super::*;
     use crate::model::NdfKind;
 
-    /// [`Facet::ggx_refractions`] against [`Facet::refraction`] one index at a time, bit
+    /// [`GgxRefractions`] against [`Facet::refraction`] one index at a time, bit
     /// for bit (the same operations; the branches became selections), over micro-normals,
     /// views, indices on both sides of 1 (total internal reflection included), roughnesses
     /// and both masking forms, with the AVX2 build where the CPU has it.
@@ -504,7 +508,8 @@ mod tests {
                             let Some(f) = Facet::new(&ndf, smith, mu, g1v, &m) else {
                                 continue;
                             };
-                            let got = f.ggx_refractions(alpha * alpha, smith, g1v, &etas, mu, &m);
+                            let got =
+                                GgxRefractions::<8>::new(&ndf, smith, g1v, mu, &etas).g(&f, &m);
                             for (k, &eta) in etas.iter().enumerate() {
                                 let want = f
                                     .refraction(&ndf, smith, g1v, eta, mu, &m)
@@ -525,7 +530,10 @@ mod tests {
                 }
             }
         }
-        assert!(some > 10_000 && none > 10_000, "{some} refractions, {none} none");
+        assert!(
+            some > 10_000 && none > 10_000,
+            "{some} refractions, {none} none"
+        );
     }
 
     /// [`SmithForm::ggx`] against [`SmithForm::g`] of two `Ndf::g1` over roughnesses from

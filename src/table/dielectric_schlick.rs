@@ -24,9 +24,9 @@ use super::{TableSpec, TexelResult};
 use crate::kernels::micro_normals::{integrate_micro_normals, Rule};
 use crate::kernels::roughness_fibre::ROUGHNESS_FIBRE;
 use crate::lut::Channel;
-use crate::model::btdf::{Facet, MicroNormal, SmithForm};
+use crate::model::btdf::{Facet, GgxRefractions, MicroNormal, SmithForm};
 use crate::model::schlick_dielectric::{integrands, outer_schlick_weight, smooth_limit};
-use crate::model::{Ndf, NdfKind};
+use crate::model::Ndf;
 
 fn ch(name: &str, meaning: &str) -> Channel {
     Channel {
@@ -94,12 +94,9 @@ fn shared(
     tol: f64,
 ) -> crate::quadrature::Estimate<FIBRE_CHANNELS> {
     debug_assert!(etas.len() <= FIBRE_SLICES && etas.iter().all(|&e| e >= 1.0));
-    assert!(ndf.kind() == NdfKind::Ggx, "GGX (validated)");
     let mu1 = mu.min(1.0);
     let g1v = ndf.g1(mu1);
-    let a2 = ndf.alpha() * ndf.alpha();
-    // every lane an index (the unused ones repeat the last; their values are dropped)
-    let lanes: [f64; FIBRE_SLICES] = std::array::from_fn(|k| etas[k.min(etas.len() - 1)]);
+    let refractions = GgxRefractions::<FIBRE_SLICES>::new(ndf, smith, g1v, mu1, etas);
     integrate_micro_normals(ndf, Rule::standard(etas), mu, tol, |h: &MicroNormal| {
         let mut y = [0.0; FIBRE_CHANNELS];
         let Some(f) = Facet::new(ndf, smith, mu1, g1v, h) else {
@@ -110,7 +107,8 @@ fn shared(
         let wt = f.w * (1.0 - s);
         y[0] = wt * f.gr;
         y[1] = f.w * s * f.gr;
-        let g = f.ggx_refractions(a2, smith, g1v, &lanes, mu1, h);
+        // (lanes beyond the indices repeat the last: dropped)
+        let g = refractions.g(&f, h);
         for (t, &g) in y[2..].iter_mut().zip(&g).take(etas.len()) {
             *t = wt * g;
         }
