@@ -20,6 +20,17 @@ fn column(ndf: &Ndf, spec: &TableSpec, etas: &[f64]) -> Vec<TexelResult> {
     let groups = super::dielectric::fibre_groups_of(etas, &vec![0.0; etas.len()], GROUP);
     let mut out = vec![TexelResult::exact(vec![0.0]); etas.len()];
     for g in groups {
+        if let [z] = g[..] {
+            // (alone, as every eta < 1 texel: one channel, not GROUP of which all but one
+            // would be summed as zeros at every node: 25% of `cycles-glass-inv-eavg`)
+            let e = average_albedo::<1>(ndf, smith, &[etas[z]], tol);
+            out[z] = TexelResult {
+                value: e.value.to_vec(),
+                error: e.error.to_vec(),
+                evals: e.evals,
+            };
+            continue;
+        }
         let group: Vec<f64> = g.iter().map(|&z| etas[z]).collect();
         let e = average_albedo::<GROUP>(ndf, smith, &group, tol);
         for (j, &z) in g.iter().enumerate() {
