@@ -49,6 +49,7 @@ use super::micro_normals::{panels, Breaks};
 use crate::model::btdf::SmithForm;
 use crate::model::fresnel::dielectric;
 use crate::model::{Ndf, NdfKind};
+use crate::numerics::cos_0_pi;
 use crate::quadrature::cc1d::Estimator;
 use crate::quadrature::{Estimate, Tolerance};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -170,7 +171,7 @@ pub fn average_albedo<const N: usize>(
                 }
                 let e = panels(
                     |psi: f64| {
-                        let bc = b * psi.cos();
+                        let bc = b * cos_0_pi(psi);
                         [g(a + bc, a - bc)]
                     },
                     br,
@@ -222,7 +223,7 @@ pub fn average_albedo<const N: usize>(
                 }
                 let e = panels(
                     |psi: f64| {
-                        let nv = a + b * psi.cos();
+                        let nv = a + b * cos_0_pi(psi);
                         let mut y = [0.0; N];
                         for (k, (&eta, ct)) in etas.iter().zip(&refr).enumerate() {
                             if let Some(ct) = ct {

@@ -4,4 +4,4 @@
 pub mod poly;
 pub mod vec3;
 
-pub use poly::{exp_poly, sin_cos_taylor};
+pub use poly::{cos_0_pi, exp_poly, sin_cos_taylor};
