@@ -223,7 +223,11 @@ pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError>
     // (the other cloth albedo tables too: albedo::by_column; and dielectric-albedo-avg, whose
     // column is one roughness with every eta)
     let albedo_columns = dense.is_none() && albedo::by_column(spec);
-    let average_columns = spec.kind == TableKind::DielectricAlbedoAvg;
+    // (a column shares rules among its η ≥ 1 texels; where every texel is η < 1, each is
+    // integrated alone anyway, so the table goes texel by texel: its 16 columns of
+    // `cycles-glass-inv-eavg` differ 3× in cost and left a thread idle at the end)
+    let average_columns = spec.kind == TableKind::DielectricAlbedoAvg
+        && (0..spec.axes[1].size).any(|z| dielectric::eta_of_slice(spec, z) >= 1.0);
     let by_column =
         (spec.kind == TableKind::Dfg && dense.is_none()) || albedo_columns || average_columns;
     // tables with a fibre path go one fibre (all slices of one (i, j)) per task: block
