@@ -30,7 +30,7 @@
 //! for η < 1, c = √(1 − η² cos²θh) (η cos θt cos θh = b). All three are panel boundaries,
 //! treated as square-root ends (the panels beside them in t, c = end ± (b − a) t²); in u,
 //! θh = acos η (η < 1), where c = sin θh meets the critical cosine, is one too. (The
-//! panel ends where G's layers are, [`layer`] and c = α·4^k, are plain ends: G is smooth
+//! panel ends where G's layers are, `layer` and c = α·4^k, are plain ends: G is smooth
 //! there.) Each integral is nested Clenshaw–Curtis per panel, adaptive Gauss–Kronrod where
 //! that fails ([`crate::quadrature::cc1d::cc_or_adaptive`]), with the tail estimate in c and
 //! ψ and the standard one in u.
