@@ -5,30 +5,39 @@
 /// `x` with at most 6 significant digits: plain for 1e-4 ≤ |x| < 1e6, else scientific
 /// (`1.75e-9`, `1e300`, `0.25`, `inf`, `NaN`).
 pub fn num(x: f64) -> String {
+    significant(x, 6, 1e-4..1e6)
+}
+
+/// `x` to 4 significant digits, as charts label a value (`21.79`, `0.9806`, `-4.936e-9`):
+/// within half a unit of the 4th digit (5e-4 relative); plain for 1e-3 ≤ |x| < 1e4.
+pub fn sig4(x: f64) -> String {
+    significant(x, 4, 1e-3..1e4)
+}
+
+/// `x` rounded to `digits` significant digits, trailing zeros dropped: plain when |x| is in
+/// `plain`, else scientific.
+fn significant(x: f64, digits: usize, plain: std::ops::Range<f64>) -> String {
     if !x.is_finite() {
         return format!("{x}");
     }
     if x == 0.0 {
         return "0".into();
     }
-    let a = x.abs();
-    if (1e-4..1e6).contains(&a) {
-        // 6 significant digits, trailing zeros dropped
-        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
-        let s = format!("{x:.decimals$}");
+    let trim = |s: &str| {
         if s.contains('.') {
-            return s.trim_end_matches('0').trim_end_matches('.').to_string();
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
         }
-        return s;
-    }
-    let s = format!("{x:.5e}");
-    let (m, e) = s.split_once('e').expect("scientific");
-    let m = if m.contains('.') {
-        m.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        m
     };
-    format!("{m}e{e}")
+    let a = x.abs();
+    if plain.contains(&a) {
+        let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+        return trim(&format!("{x:.decimals$}"));
+    }
+    let s = format!("{x:.*e}", digits - 1);
+    let (m, e) = s.split_once('e').expect("scientific");
+    format!("{}e{e}", trim(m))
 }
 
 /// Seconds for people: `850 ms`, `12.3 s`, `4.5 min`, `2.1 h`.
@@ -57,7 +66,7 @@ pub fn human_bytes(bytes: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{num, sig4};
 
     #[test]
     fn short_forms() {
@@ -73,5 +82,15 @@ mod tests {
         assert_eq!(num(f64::INFINITY), "inf");
         assert_eq!(num(0.0), "0");
         assert_eq!(num(1e-4), "0.0001");
+    }
+
+    #[test]
+    fn four_digits() {
+        assert_eq!(sig4(21.786140), "21.79");
+        assert_eq!(sig4(0.98061), "0.9806");
+        assert_eq!(sig4(0.99999994), "1");
+        assert_eq!(sig4(-4.935667e-9), "-4.936e-9");
+        assert_eq!(sig4(12346.0), "1.235e4");
+        assert_eq!(sig4(0.0), "0");
     }
 }

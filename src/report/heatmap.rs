@@ -8,8 +8,9 @@
 //! its colour bar still spans the whole table's range.
 
 use super::layout::{wrap, Anchor, Canvas, Label, FONT, LINE};
-use super::svg::{colour_rgb, esc, fmt_num, linear_ticks, sig4};
+use super::svg::{colour_rgb, esc, fmt_num, linear_ticks};
 use crate::lut::Lut;
+use crate::numfmt::sig4;
 
 /// Most texels one heatmap embeds (a 1024² table is drawn whole).
 pub const MAX_DRAWN: usize = 1 << 20;

@@ -65,30 +65,6 @@ pub fn fmt_num(v: f64) -> String {
     }
 }
 
-/// `v` to 4 significant digits (`21.79`, `0.9806`, `-4.936e-9`): within half a unit of the
-/// 4th digit, i.e. 5e-4 relative.
-pub fn sig4(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let e = v.abs().log10().floor() as i32;
-    let trim = |s: String| {
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    };
-    if (-3..4).contains(&e) {
-        let d = (3 - e).max(0) as usize;
-        trim(format!("{v:.d$}"))
-    } else {
-        let s = format!("{v:.3e}");
-        let (m, x) = s.split_once('e').expect("scientific");
-        format!("{}e{x}", trim(m.to_string()))
-    }
-}
-
 /// Ticks of an axis: its drawn range (the data's, widened to whole steps) and labelled
 /// values.
 pub struct Ticks {
@@ -341,12 +317,6 @@ mod tests {
 
     #[test]
     fn numbers_for_labels() {
-        assert_eq!(sig4(21.786140), "21.79");
-        assert_eq!(sig4(0.98061), "0.9806");
-        assert_eq!(sig4(1.0), "1");
-        assert_eq!(sig4(-4.935667e-9), "-4.936e-9");
-        assert_eq!(sig4(12346.0), "1.235e4");
-        assert_eq!(sig4(0.0), "0");
         let t = linear_ticks(-0.0342, 1.0, 6);
         let labels: Vec<&str> = t.at.iter().map(|(_, l)| l.as_str()).collect();
         assert_eq!(labels, ["-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1.0"]);
