@@ -391,6 +391,7 @@ pub fn html(
          section{{border-top:1px solid #ccc;margin-top:1.5em}}\
          .row{{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}}\
          caption{{text-align:left;font-weight:bold;padding:0.3em 0}}\
+         td{{vertical-align:top}} td:not(:last-child){{white-space:nowrap}}\
          svg{{background:#fff;flex:none}} svg text{{font-family:sans-serif;fill:#222}}\
          </style></head><body>\n<h1>brdfbake report</h1>\n<p>brdfbake {} — {} table(s). \
          Heatmaps draw every texel of a channel, one image pixel per texel (zoom in to see \
