@@ -338,6 +338,62 @@ impl Axis {
         s
     }
 
+    /// The coordinate `x` of this axis as the physical quantity it stands for, for people:
+    /// `n·v = 0.5`, `r = 0.4 (α = 0.16)`, `η = 1.5`, `η = 1 + 2e-8`, `exponent e = 5`.
+    pub fn physical(&self, x: f64) -> String {
+        let (sym, value) = self.physical_parts(x);
+        format!("{sym} = {value}")
+    }
+
+    /// Coordinates `x0` to `x1` of this axis as a physical range: `n·v from 0.0005 to 0.29`.
+    pub fn physical_range(&self, x0: f64, x1: f64) -> String {
+        let (sym, a) = self.physical_parts(x0);
+        let (_, b) = self.physical_parts(x1);
+        format!("{sym} from {a} to {b}")
+    }
+
+    /// [`Axis::physical`] as its symbol and its value: (`r`, `0.4 (α = 0.16)`).
+    fn physical_parts(&self, x: f64) -> (String, String) {
+        use crate::numfmt::{near_one, num};
+        let (sym, val): (&str, String) = match self.quantity {
+            Quantity::Cosine => {
+                let sym = match self.name.as_str() {
+                    "cos_theta_v" | "n_dot_v" => "n·v",
+                    "cos_theta_l" | "n_dot_l" => "n·l",
+                    "cos_theta_h" | "n_dot_h" => "n·h",
+                    "cos_theta" => "cos θ",
+                    other => other,
+                };
+                (sym, num(x))
+            }
+            Quantity::Roughness(q) => match q {
+                RoughnessQuantity::Alpha => ("α", num(x)),
+                RoughnessQuantity::Perceptual => {
+                    ("r", format!("{} (α = {})", num(x), num(q.to_alpha(x))))
+                }
+                RoughnessQuantity::CookTorranceM => ("m", num(x)),
+                RoughnessQuantity::BlinnPhongExponent => (
+                    "exponent s",
+                    format!("{} (α = {})", num(x), num(q.to_alpha(x))),
+                ),
+                RoughnessQuantity::Exponent => ("exponent n", num(x)),
+            },
+            Quantity::Fresnel(q) => {
+                let p = q.to_parameter(x);
+                if q.is_eta() {
+                    ("η", near_one(p))
+                } else if q.is_f0() {
+                    ("F0", num(p))
+                } else {
+                    ("exponent e", num(p))
+                }
+            }
+            Quantity::Anisotropy => ("anisotropy", num(x)),
+            Quantity::FormFactor => (self.name.as_str(), num(x)),
+        };
+        (sym.to_string(), val)
+    }
+
     /// The NDF parameter α of texel `i` (roughness axes only).
     pub fn alpha(&self, i: usize) -> Option<f64> {
         match self.quantity {
@@ -446,6 +502,26 @@ pub fn texel_coordinates(axes: &[Axis], idx: &[usize]) -> Vec<f64> {
         .zip(idx)
         .map(|(a, &i)| a.coord_at(i, c))
         .collect()
+}
+
+/// Texel `idx` described by its physical coordinates, for people: `r = 1 (α = 1), n·v =
+/// 1e-4, η = 1 + 2e-8` ([`Axis::physical`] of each axis at [`texel_coordinates`]).
+pub fn texel_physical(axes: &[Axis], idx: &[usize]) -> String {
+    axes.iter()
+        .zip(texel_coordinates(axes, idx))
+        .map(|(a, x)| a.physical(x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Texel `idx` by its indices in one order for every table, `x` the fastest axis of the
+/// stored layout (as the file runs), for people: `x = 15, y = 0, z = 0`.
+pub fn texel_indices(idx: &[usize]) -> String {
+    idx.iter()
+        .zip(["x", "y", "z"])
+        .map(|(i, n)| format!("{n} = {i}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// [`texel_coordinates`] before the clamp: [`Axis::nominal_coord`] of every axis, a

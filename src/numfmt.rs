@@ -31,6 +31,41 @@ pub fn num(x: f64) -> String {
     format!("{m}e{e}")
 }
 
+/// `x` with two significant digits, as the docs quote figures: plain for 0.01 ≤ |x| < 1000
+/// (`0.93`, `0.021`, `5.3`), else scientific (`9.7e-7`, `1.4e-3`).
+pub fn fig(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (0.01..1000.0).contains(&a) {
+        let decimals = (1 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        // (rounding may carry into a new digit: 0.0996 -> 0.10)
+        if s.contains('.') {
+            return s.trim_end_matches('0').trim_end_matches('.').to_string();
+        }
+        return s;
+    }
+    let s = format!("{x:.1e}");
+    let (m, e) = s.split_once('e').expect("scientific");
+    format!("{}e{e}", m.trim_end_matches(".0"))
+}
+
+/// A value near 1 with the digits that tell it from 1: `1 + 2e-8`, `1 - 3.5e-6`; other
+/// values as [`num`].
+pub fn near_one(x: f64) -> String {
+    let d = x - 1.0;
+    if d != 0.0 && d.abs() < 1e-4 {
+        format!("1 {} {}", if d > 0.0 { "+" } else { "-" }, num(d.abs()))
+    } else {
+        num(x)
+    }
+}
+
 /// Seconds for people: `850 ms`, `12.3 s`, `4.5 min`, `2.1 h`.
 pub fn human_seconds(s: f64) -> String {
     if s < 1.0 {
@@ -57,7 +92,21 @@ pub fn human_bytes(bytes: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{fig, near_one, num};
+
+    #[test]
+    fn figures_and_values_near_one() {
+        assert_eq!(fig(0.93), "0.93");
+        assert_eq!(fig(0.0214), "0.021");
+        assert_eq!(fig(9.74e-7), "9.7e-7");
+        assert_eq!(fig(0.0996), "0.1");
+        assert_eq!(fig(0.00996), "1e-2");
+        assert_eq!(fig(-2.5e-3), "-2.5e-3");
+        assert_eq!(fig(173.4), "173");
+        assert_eq!(near_one(1.00000002), "1 + 2e-8");
+        assert_eq!(near_one(0.999), "0.999");
+        assert_eq!(near_one(1.0), "1");
+    }
 
     #[test]
     fn short_forms() {

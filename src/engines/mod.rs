@@ -33,6 +33,10 @@ pub struct Comparison {
     /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
     /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
     pub brdfbake_bound: f64,
+    /// What the file stores, and, for a quotes file, how many texels it quotes.
+    pub storage: String,
+    /// The degenerate slices the preset names, left out of each channel's verdict.
+    pub excluded: Vec<compare::ExcludedSlice>,
     pub channels: Vec<compare::ChannelComparison>,
     /// The shipped table's error per texel (shipped − exact) of each compared channel, in
     /// the stored layout: for the report's heatmaps.
@@ -89,9 +93,13 @@ pub fn compare_table(
     })?;
     let stored_axes = t.stored_axes();
     let dims = [0, 1, 2].map(|k| stored_axes.get(k).map_or(1, |a| a.size));
-    let table = shipped
-        .read(bytes, dims, file)
-        .map_err(CompareError::Input)?;
+    let table = shipped.read(bytes, dims, file).map_err(|e| {
+        CompareError::Input(format!(
+            "{e}\n  {preset} reads {}; {file} looks like {}",
+            shipped.expects(None),
+            shipped::looks_like(bytes)
+        ))
+    })?;
     let ours = crate::table::bake_with(
         &t.spec,
         &BakeOptions {
@@ -144,7 +152,18 @@ pub fn compare_table(
         s
     });
     let exact = t.stored(exact);
-    let channels = compare::compare(&table, &ours, stored.as_ref(), &exact);
+    let exact_error = exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e));
+    let (excluded, _) =
+        compare::judged_texels(&exact, table.present.as_deref(), &shipped.degenerate);
+    let channels = compare::compare(&compare::Inputs {
+        shipped: &table,
+        ours: &ours,
+        stored: stored.as_ref(),
+        exact: &exact,
+        exact_error,
+        degenerate: &shipped.degenerate,
+        names: &shipped.spelled,
+    });
     // the shipped table's errors, for the report
     let mut errors = exact.clone();
     errors.channels = channels
@@ -171,6 +190,10 @@ pub fn compare_table(
                     .iter()
                     .position(|x| x == &c.channel)
                     .expect("compared");
+                if table.present.as_ref().is_some_and(|p| !p[i]) {
+                    // (a texel the quotes file does not hold)
+                    return 0.0;
+                }
                 (table.values[i * ncf + f] - exact.data[i * nce + e] as f64) as f32
             })
         })
@@ -191,8 +214,10 @@ pub fn compare_table(
                 "a 100x tighter reference does not converge at every texel"
             },
         ),
-        exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
+        exact_error_estimate: exact_error,
         brdfbake_bound: 1e-6f64.max(rounding),
+        storage: table.storage.clone(),
+        excluded,
         channels,
         errors,
     })
