@@ -341,20 +341,33 @@ impl Axis {
     /// The coordinate `x` of this axis as the physical quantity it stands for, for people:
     /// `n·v = 0.5`, `r = 0.4 (α = 0.16)`, `η = 1.5`, `η = 1 + 2e-8`, `exponent e = 5`.
     pub fn physical(&self, x: f64) -> String {
-        let (sym, value) = self.physical_parts(x);
+        let (sym, value) = self.physical_parts(x, crate::numfmt::num);
         format!("{sym} = {value}")
+    }
+
+    /// [`Axis::physical`] with 3 significant digits and without the α of a perceptual
+    /// roughness, for short texts: `n·v = 0.0317`, `r = 0.35`.
+    pub fn physical_short(&self, x: f64) -> String {
+        let (sym, value) = self.physical_parts(x, crate::numfmt::short);
+        let value = value.split(" (α").next().unwrap_or(&value).to_string();
+        format!("{sym} = {value}")
+    }
+
+    /// The symbol of [`Axis::physical`] (`n·v`, `r`, `η`).
+    pub fn physical_symbol(&self) -> String {
+        self.physical_parts(0.5, crate::numfmt::num).0
     }
 
     /// Coordinates `x0` to `x1` of this axis as a physical range: `n·v from 0.0005 to 0.29`.
     pub fn physical_range(&self, x0: f64, x1: f64) -> String {
-        let (sym, a) = self.physical_parts(x0);
-        let (_, b) = self.physical_parts(x1);
+        let (sym, a) = self.physical_parts(x0, crate::numfmt::num);
+        let (_, b) = self.physical_parts(x1, crate::numfmt::num);
         format!("{sym} from {a} to {b}")
     }
 
     /// [`Axis::physical`] as its symbol and its value: (`r`, `0.4 (α = 0.16)`).
-    fn physical_parts(&self, x: f64) -> (String, String) {
-        use crate::numfmt::{near_one, num};
+    fn physical_parts(&self, x: f64, num: fn(f64) -> String) -> (String, String) {
+        use crate::numfmt::near_one;
         let (sym, val): (&str, String) = match self.quantity {
             Quantity::Cosine => {
                 let sym = match self.name.as_str() {
@@ -381,7 +394,8 @@ impl Axis {
             Quantity::Fresnel(q) => {
                 let p = q.to_parameter(x);
                 if q.is_eta() {
-                    ("η", near_one(p))
+                    let near = (p - 1.0).abs() < 1e-4 && p != 1.0;
+                    ("η", if near { near_one(p) } else { num(p) })
                 } else if q.is_f0() {
                     ("F0", num(p))
                 } else {

@@ -91,7 +91,14 @@ pub fn run(a: CompareArgs) -> Result<(), CliError> {
     })?;
     let file = a.file.display().to_string();
     let c =
-        compare_table(&preset.name, t, &bytes, &file, Some(&deadline)).map_err(|e| match e {
+        compare_table(
+            &preset.name,
+            preset.source.as_ref(),
+            t,
+            &bytes,
+            &file,
+            Some(&deadline),
+        ).map_err(|e| match e {
             CompareError::Input(m) => CliError::input(m),
             CompareError::Bake(e) => super::bake_error(&preset.name, e),
         })?;

@@ -81,6 +81,8 @@ pub struct ExcludedSlice {
     pub at: String,
     pub texels: usize,
     pub why: String,
+    /// The shipped table's largest |error| in the slice, over the compared channels.
+    pub max_abs: f64,
 }
 
 /// What is wrong with a shipped channel, beyond its storage's rounding.
@@ -106,8 +108,12 @@ pub enum Fault {
     /// them, or a range of lines along `axis`), significant against the texels' scatter.
     Bias {
         axis: Option<String>,
+        /// The first and last line of the range along `axis`.
+        range: Option<[usize; 2]>,
         text: String,
         mean_signed: f64,
+        /// Whether the bias exceeds the storage's rounding (else it shows only on average).
+        material: bool,
     },
     /// Texel-to-texel scatter (Monte Carlo noise) larger than the storage's rounding.
     Noise { sigma: f64 },
@@ -116,6 +122,7 @@ pub enum Fault {
     Outliers {
         count: usize,
         worst_error: f64,
+        worst_texel: [usize; 3],
         worst_physical: String,
     },
 }
@@ -123,7 +130,7 @@ pub enum Fault {
 /// The verdict on one shipped channel: its error against what its own storage allows.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Verdict {
-    /// The file's storage (`6 printed decimals`, `f16`, `8-bit UNORM`).
+    /// The file's storage (`6 decimals`, `f16`, `8-bit UNORM`).
     pub storage: String,
     /// The largest rounding the storage allows at the judged texels (half a step).
     pub storage_rounding: f64,
@@ -225,6 +232,7 @@ pub fn judged_texels(
             at,
             texels,
             why: d.why.clone(),
+            max_abs: 0.0,
         });
     }
     (out, judged)
@@ -377,6 +385,7 @@ fn verdict(
                 faults.push(Fault::Outliers {
                     count: far.len(),
                     worst_error: s.worst_value - s.worst_exact,
+                    worst_texel: s.worst_texel,
                     worst_physical: s.worst_physical.clone(),
                 });
             }
@@ -458,8 +467,10 @@ fn bias(l: &Lut, v: &[f64], exact: &[f64], judged: &[bool], rounding: f64) -> Op
     if material(mean, mean_abs, se) {
         return Some(Fault::Bias {
             axis: None,
+            range: None,
             text: "every texel".into(),
             mean_signed: mean,
+            material: mean.abs() > rounding,
         });
     }
     let mut best: Option<(usize, usize, usize, f64)> = None; // (axis, first, last, mean)
@@ -501,8 +512,10 @@ fn bias(l: &Lut, v: &[f64], exact: &[f64], judged: &[bool], rounding: f64) -> Op
         let a = &l.axes[k];
         Fault::Bias {
             axis: Some(a.name.clone()),
+            range: Some([i, j]),
             text: a.physical_range(a.coord(i), a.coord(j)),
             mean_signed: m,
+            material: m.abs() > rounding,
         }
     })
 }
@@ -585,11 +598,19 @@ impl Fault {
                 format!("worst at {text}, up to {} there", fig(*max_abs))
             }
             Fault::Bias {
-                text, mean_signed, ..
+                text,
+                mean_signed,
+                material,
+                ..
             } => format!(
-                "biased {} by {} on average over {text} (a different estimator or model)",
+                "biased {} by {} on average over {text} ({})",
                 if *mean_signed < 0.0 { "low" } else { "high" },
-                fig(mean_signed.abs())
+                fig(mean_signed.abs()),
+                if *material {
+                    "a different estimator or model"
+                } else {
+                    "below its rounding, but systematic"
+                }
             ),
             Fault::Noise { sigma } => {
                 format!("Monte Carlo noise, sigma {} texel to texel", fig(*sigma))
@@ -598,6 +619,7 @@ impl Fault {
                 count,
                 worst_error,
                 worst_physical,
+                ..
             } => format!(
                 "{count} texel(s) above 4× that, the worst {} {} at {worst_physical}",
                 fig(worst_error.abs()),
@@ -883,7 +905,7 @@ mod tests {
             step: 0.0,
             // (6 printed decimals)
             rounding: vec![5e-7; n],
-            storage: "6 printed decimals".into(),
+            storage: "6 decimals".into(),
             present: None,
         }
     }

@@ -152,7 +152,7 @@ pub struct ShippedTable {
     /// numbers the storage can hold at that value (half a UNORM code, decoded; half an f16
     /// or f32 ulp; half a unit in the last printed decimal).
     pub rounding: Vec<f64>,
-    /// What the file stores, for people: `6 printed decimals`, `f16`, `8-bit UNORM`.
+    /// What the file stores, for people: `6 decimals`, `f16`, `8-bit UNORM`.
     pub storage: String,
     /// The texels the file holds, where it holds only some (a quotes file: `true` at each
     /// quoted texel); `None`: every texel.
@@ -539,8 +539,8 @@ impl NumberKind {
 
     fn text(self) -> String {
         match self {
-            NumberKind::Printed(d) if d >= 9 => "printed decimals (as f32)".into(),
-            NumberKind::Printed(d) => format!("{d} printed decimals"),
+            NumberKind::Printed(d) if d >= 9 => "f32 printed in full".into(),
+            NumberKind::Printed(d) => format!("{d} decimals"),
             NumberKind::Half => "f16".into(),
             NumberKind::F32 => "f32".into(),
             NumberKind::Unorm(max) => format!("{}-bit UNORM", (max + 1.0).log2().round()),
@@ -1021,7 +1021,7 @@ mod tests {
             .read(b"float b[2] = {0.500000f, 0.25f};", [2, 1, 1], "t")
             .unwrap();
         assert_eq!(t.rounding, [5e-7, 5e-7]);
-        assert_eq!(t.storage, "6 printed decimals");
+        assert_eq!(t.storage, "6 decimals");
         let s = shipped(r#"{"format": "text", "values": "half-bits", "channels": ["E"]}"#);
         let t = s.read(b"0x3c00 0x3800", [2, 1, 1], "t").unwrap();
         // half an f16 ulp: 2^-11 at 1, 2^-12 at 0.5
@@ -1044,7 +1044,7 @@ mod tests {
         assert_eq!(t.present, Some(vec![true, false, false, true]));
         assert_eq!(&t.values[6..8], [0.25, 0.5]);
         assert_eq!(&t.values[0..2], [0.125, 1.0]);
-        assert_eq!(t.storage, "6 printed decimals, 2 of 4 texels quoted");
+        assert_eq!(t.storage, "6 decimals, 2 of 4 texels quoted");
         let e = s
             .read(b"# brdfbake-quotes: y x T\n0 0 1\n", [2, 2, 1], "q")
             .unwrap_err();
