@@ -55,3 +55,46 @@ fn the_docs_engine_figures_are_comparisons() {
         }
     }
 }
+
+/// BENCHMARKS.md's rows of the default presets (`scripts/bench.sh`, whose timings only a
+/// benchmark run can give) also hold figures any bake reproduces: the integrand evaluations
+/// and the largest error estimate of each preset's tables. Baked here, they must be the
+/// figures printed there, so the table cannot outlive a change of the numerics; after one,
+/// `scripts/bench.sh` gives the new table.
+#[test]
+fn the_benchmarks_deterministic_columns_are_the_bakes() {
+    let text =
+        std::fs::read_to_string(engine_figures::root().join("BENCHMARKS.md")).unwrap();
+    for (name, preset_text) in brdfbake::presets::BUILTIN {
+        let preset = brdfbake::preset::parse(preset_text, name, name).unwrap();
+        let (mut evals, mut est) = (0u64, 0.0f64);
+        for t in &preset.tables {
+            let lut = brdfbake::table::bake(&t.spec).unwrap();
+            evals += lut.evaluations;
+            est = est.max(lut.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)));
+        }
+        let row = text
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} | **whole process** |")))
+            .unwrap_or_else(|| panic!("BENCHMARKS.md has no row of {name}"));
+        let cols: Vec<&str> = row.split('|').map(str::trim).collect();
+        // | preset | table | size | threads | wall | CPU | runs | evaluations | ev/s | est | ...
+        assert_eq!(
+            cols[8],
+            evals.to_string(),
+            "{name}: BENCHMARKS.md says {} evaluations, the bake makes {evals} (rerun scripts/bench.sh)",
+            cols[8]
+        );
+        // (examples/bench.rs prints a closed form's 0 as "0")
+        let want = if evals == 0 && est == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{est:.1e}")
+        };
+        assert_eq!(
+            cols[10],
+            want,
+            "{name}: BENCHMARKS.md's est. max error differs from the bake's (rerun scripts/bench.sh)"
+        );
+    }
+}
