@@ -223,7 +223,13 @@ pub fn bake_preset_until(
         let fit_lit_max = fit.as_ref().and_then(|f| {
             let c = f.channels.iter().position(|c| c.name == "lit_max")?;
             let nc = f.channels.len();
-            let mut v: Vec<f64> = f.data.iter().skip(c).step_by(nc).map(|&x| x as f64).collect();
+            let mut v: Vec<f64> = f
+                .data
+                .iter()
+                .skip(c)
+                .step_by(nc)
+                .map(|&x| x as f64)
+                .collect();
             v.sort_by(f64::total_cmp);
             Some((*v.get(v.len() / 2)?, *v.last()?))
         });

@@ -27,7 +27,11 @@ fn the_docs_engine_figures_are_comparisons() {
         }
     }
     for c in &cs {
-        assert!(c.brdfbake_within_bound(), "{}: brdfbake misses its bound", c.preset);
+        assert!(
+            c.brdfbake_within_bound(),
+            "{}: brdfbake misses its bound",
+            c.preset
+        );
     }
     // every table file kept as test data is compared, so none is left out of the figures
     let dir = engine_figures::root().join("tests/data/engines");
@@ -44,10 +48,7 @@ fn the_docs_engine_figures_are_comparisons() {
             if name == "LICENSE" || name == "ltc_quotes.txt" {
                 continue;
             }
-            let rel = format!(
-                "{}/{name}",
-                engine.file_name().unwrap().to_string_lossy()
-            );
+            let rel = format!("{}/{name}", engine.file_name().unwrap().to_string_lossy());
             assert!(
                 manifest.contains(&format!("\"file\": \"{rel}\"")),
                 "tests/data/engines/{rel} is not compared in manifest.json"
@@ -63,8 +64,7 @@ fn the_docs_engine_figures_are_comparisons() {
 /// `scripts/bench.sh` gives the new table.
 #[test]
 fn the_benchmarks_deterministic_columns_are_the_bakes() {
-    let text =
-        std::fs::read_to_string(engine_figures::root().join("BENCHMARKS.md")).unwrap();
+    let text = std::fs::read_to_string(engine_figures::root().join("BENCHMARKS.md")).unwrap();
     for (name, preset_text) in brdfbake::presets::BUILTIN {
         let preset = brdfbake::preset::parse(preset_text, name, name).unwrap();
         let (mut evals, mut est) = (0u64, 0.0f64);

@@ -257,7 +257,11 @@ fn unreal_preintegrated_gf_is_its_generator_converged() {
     let [a, b] = run("unreal-preintegrated-gf", &Grid { nx, ny, texels }, 3e-3);
     docs::assert_says(
         "docs/engines.md",
-        &format!("Unreal's A off by up to {}, B by {} at all 4,096 texels", fig(a), fig(b)),
+        &format!(
+            "Unreal's A off by up to {}, B by {} at all 4,096 texels",
+            fig(a),
+            fig(b)
+        ),
     );
 }
 

@@ -4,7 +4,6 @@
 //! PATH (`cargo run --release --` is that binary). A line fails the test if it exits non-zero.
 //! The test command itself (`scripts/test`) is the one line not run here: CI runs it.
 
-
 use std::process::Command;
 
 /// The lines of the README's ```sh blocks, comments kept (sh ignores them).
@@ -38,7 +37,11 @@ fn every_readme_command_runs_as_written() {
     let bin = d.join("bin");
     std::fs::create_dir(&bin).unwrap();
     std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_brdfbake"), bin.join("brdfbake")).unwrap();
-    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap_or_default());
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
     let lines = readme_lines();
     assert!(lines.len() >= 10, "the README's sh blocks: {lines:?}");
     let mut ran = 0;

@@ -15,7 +15,10 @@ fn version(s: &str) -> Vec<u64> {
 fn rust_version_covers_every_locked_dependency() {
     let root = env!("CARGO_MANIFEST_DIR");
     let host = {
-        let out = Command::new("rustc").arg("-vV").output().expect("rustc -vV");
+        let out = Command::new("rustc")
+            .arg("-vV")
+            .output()
+            .expect("rustc -vV");
         let text = String::from_utf8(out.stdout).unwrap();
         text.lines()
             .find_map(|l| l.strip_prefix("host: "))

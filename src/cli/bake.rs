@@ -514,10 +514,24 @@ mod suggestion_tests {
 
     #[test]
     fn typos_get_the_nearest_name() {
-        let known = ["filament-dfg", "karis-envbrdf", "cycles-ggx-e", "cycles-ggx-eavg"];
-        assert_eq!(did_you_mean("filament-dgf", known.iter().copied()), Some("filament-dfg"));
-        assert_eq!(did_you_mean("Filament-DFG", known.iter().copied()), Some("filament-dfg"));
-        assert_eq!(did_you_mean("cycles-ggx-eav", known.iter().copied()), Some("cycles-ggx-eavg"));
+        let known = [
+            "filament-dfg",
+            "karis-envbrdf",
+            "cycles-ggx-e",
+            "cycles-ggx-eavg",
+        ];
+        assert_eq!(
+            did_you_mean("filament-dgf", known.iter().copied()),
+            Some("filament-dfg")
+        );
+        assert_eq!(
+            did_you_mean("Filament-DFG", known.iter().copied()),
+            Some("filament-dfg")
+        );
+        assert_eq!(
+            did_you_mean("cycles-ggx-eav", known.iter().copied()),
+            Some("cycles-ggx-eavg")
+        );
         assert_eq!(did_you_mean("something-else", known.iter().copied()), None);
     }
 }

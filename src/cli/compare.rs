@@ -90,18 +90,18 @@ pub fn run(a: CompareArgs) -> Result<(), CliError> {
         smaller: "compare a smaller table",
     })?;
     let file = a.file.display().to_string();
-    let c =
-        compare_table(
-            &preset.name,
-            preset.source.as_ref(),
-            t,
-            &bytes,
-            &file,
-            Some(&deadline),
-        ).map_err(|e| match e {
-            CompareError::Input(m) => CliError::input(m),
-            CompareError::Bake(e) => super::bake_error(&preset.name, e),
-        })?;
+    let c = compare_table(
+        &preset.name,
+        preset.source.as_ref(),
+        t,
+        &bytes,
+        &file,
+        Some(&deadline),
+    )
+    .map_err(|e| match e {
+        CompareError::Input(m) => CliError::input(m),
+        CompareError::Bake(e) => super::bake_error(&preset.name, e),
+    })?;
     if a.json {
         let mut doc = serde_json::to_value(&c).expect("serializable");
         doc["schema"] = json!("brdfbake.compare/1");

@@ -450,7 +450,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     let stored =
                         crate::encode::unorm::quantized(&t.spec.name, &scaled, t.spec.storage)
                             .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
-                    jobs.push((label, t.clone(), stored, t.scale, stated, None, Checked::Baked));
+                    jobs.push((
+                        label,
+                        t.clone(),
+                        stored,
+                        t.scale,
+                        stated,
+                        None,
+                        Checked::Baked,
+                    ));
                     continue;
                 }
                 // (baked here, the texels are the values: no scale applied)

@@ -310,7 +310,12 @@ pub fn compare(inp: &Inputs) -> Vec<ChannelComparison> {
 /// Half the spacing of f32 numbers at `v`: the exact values are stored in f32.
 fn f32_rounding(v: f64) -> f64 {
     let a = v.abs();
-    let e = if a > 0.0 { a.log2().floor() as i32 } else { -126 }.max(-126);
+    let e = if a > 0.0 {
+        a.log2().floor() as i32
+    } else {
+        -126
+    }
+    .max(-126);
     2f64.powi(e - 24)
 }
 
@@ -480,9 +485,8 @@ fn bias(l: &Lut, v: &[f64], exact: &[f64], judged: &[bool], rounding: f64) -> Op
         }
         let line: Vec<Option<f64>> = (0..a.size)
             .map(|i| {
-                let (m, ma, se, n) = moments(
-                    &mut (0..v.len()).filter(|t| judged[*t] && texel_of(l, *t)[k] == i),
-                );
+                let (m, ma, se, n) =
+                    moments(&mut (0..v.len()).filter(|t| judged[*t] && texel_of(l, *t)[k] == i));
                 (n > 1 && material(m, ma, se)).then_some(m)
             })
             .collect();
@@ -499,9 +503,8 @@ fn bias(l: &Lut, v: &[f64], exact: &[f64], judged: &[bool], rounding: f64) -> Op
             // a run of at least a tenth of the axis (and 2 lines): a region, not a line
             if j + 1 - i >= (a.size / 10).max(2) && best.is_none_or(|b| j - i > b.2 - b.1) {
                 let (m, _, _, _) = moments(
-                    &mut (0..v.len()).filter(|t| {
-                        judged[*t] && (i..=j).contains(&texel_of(l, *t)[k])
-                    }),
+                    &mut (0..v.len())
+                        .filter(|t| judged[*t] && (i..=j).contains(&texel_of(l, *t)[k])),
                 );
                 best = Some((k, i, j, m));
             }
@@ -1000,7 +1003,11 @@ mod tests {
         let c = &cmp(&shipped(noisy), &exact)[0];
         assert!(!c.verdict.within_storage);
         assert_eq!(c.verdict.grade, "noise", "{}", c.verdict.text);
-        assert!(c.verdict.text.contains("Monte Carlo noise"), "{}", c.verdict.text);
+        assert!(
+            c.verdict.text.contains("Monte Carlo noise"),
+            "{}",
+            c.verdict.text
+        );
 
         let biased = |x, y| printed(x, y) + 5e-6 + 1e-6 * jitter(x, y);
         let c = &cmp(&shipped(biased), &exact)[0];
@@ -1017,7 +1024,11 @@ mod tests {
 
         let s = shipped(|x, y| exact_fn(x, (y + 1).min(7)));
         let c = &cmp(&s, &exact)[0];
-        assert!(c.verdict.text.contains("one texel off along v"), "{}", c.verdict.text);
+        assert!(
+            c.verdict.text.contains("one texel off along v"),
+            "{}",
+            c.verdict.text
+        );
     }
 
     /// A degenerate slice is left out of the verdict and the regular statistics, and kept in
@@ -1048,10 +1059,18 @@ mod tests {
         assert_eq!(ex[0].texels, 8);
         assert_eq!(ex[0].at, "v = 0.0625");
 
-        let mut q = shipped(|x, y| if (x + y) % 3 == 0 { exact_fn(x, y) + 0.25 } else { 0.0 });
+        let mut q = shipped(|x, y| {
+            if (x + y) % 3 == 0 {
+                exact_fn(x, y) + 0.25
+            } else {
+                0.0
+            }
+        });
         q.present = Some((0..64).map(|t| (t % 8 + t / 8) % 3 == 0).collect());
         let c = &cmp(&q, &exact)[0];
         assert_eq!(c.shipped.texels, 21);
-        assert!((c.shipped.max_abs - 0.25).abs() < 1e-6 && (c.shipped.mean_signed - 0.25).abs() < 1e-6);
+        assert!(
+            (c.shipped.max_abs - 0.25).abs() < 1e-6 && (c.shipped.mean_signed - 0.25).abs() < 1e-6
+        );
     }
 }

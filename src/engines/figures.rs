@@ -22,9 +22,17 @@ fn range_words(a: &crate::lut::Axis, r: [usize; 2]) -> String {
     if lo == hi {
         at(lo)
     } else if lo == 0 && hi + 1 < a.size {
-        format!("{sym} {} {}", if increasing { "≤" } else { "≥" }, value(if increasing { hi } else { lo }))
+        format!(
+            "{sym} {} {}",
+            if increasing { "≤" } else { "≥" },
+            value(if increasing { hi } else { lo })
+        )
     } else if hi + 1 == a.size && lo > 0 {
-        format!("{sym} {} {}", if increasing { "≥" } else { "≤" }, value(if increasing { lo } else { hi }))
+        format!(
+            "{sym} {} {}",
+            if increasing { "≥" } else { "≤" },
+            value(if increasing { lo } else { hi })
+        )
     } else {
         format!("{sym} {} to {}", value(first), value(last))
     }
@@ -55,7 +63,9 @@ fn fault_words(f: &Fault, axes: &[crate::lut::Axis]) -> String {
         Fault::ShiftedGrid { axis, .. } => format!("grid one texel off along {axis}"),
         Fault::WrongQuantity { .. } => "another quantity".into(),
         Fault::Clamped { value, count } => format!("{count} texels clamped at {value}"),
-        Fault::Lines { axis: name, ranges, .. } => match axis(name) {
+        Fault::Lines {
+            axis: name, ranges, ..
+        } => match axis(name) {
             Some(a) => {
                 let mut w = format!("worst at {}", range_words(a, ranges[0]));
                 if ranges.len() > 1 {
@@ -96,7 +106,8 @@ fn short_texel(axes: &[crate::lut::Axis], idx: &[usize; 3]) -> String {
 pub const README_HEADER: &str = "| preset | engine's table | the shipped table's largest error per channel (its verdict) |\n|---|---|---|";
 
 /// The header of docs/engines.md's table of verdicts.
-pub const DETAIL_HEADER: &str = "| preset | channel | the shipped table's largest error, where | verdict |\n|---|---|---|---|";
+pub const DETAIL_HEADER: &str =
+    "| preset | channel | the shipped table's largest error, where | verdict |\n|---|---|---|---|";
 
 /// The row of the README's engine table: `| preset | engine's table | per channel the
 /// largest error of the shipped table and its verdict |`.

@@ -152,9 +152,7 @@ pub fn compare_table(
         None => {
             let (l, tol) = match reference(&ref_spec) {
                 Ok(l) => (l, ref_spec.tolerance),
-                Err(BakeError::ToleranceMissed { .. }) => {
-                    (reference(&t.spec)?, t.spec.tolerance)
-                }
+                Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
                 Err(e) => return Err(e.into()),
             };
             (t.stored(l), tol)
@@ -225,7 +223,9 @@ pub fn compare_table(
             .data
             .chunks(nc)
             .enumerate()
-            .filter(|(t, _)| k.is_some_and(|k| [t % nx, (t / nx) % ny, t / (nx * ny)][k] == e.index))
+            .filter(|(t, _)| {
+                k.is_some_and(|k| [t % nx, (t / nx) % ny, t / (nx * ny)][k] == e.index)
+            })
             .flat_map(|(_, c)| c.iter())
             .fold(0.0f64, |m, v| m.max(v.abs() as f64));
     }
@@ -283,7 +283,10 @@ fn quoted_reference(
             let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
             let x = crate::lut::texel_nominal_coordinates(&ours.axes, &idx[..ours.axes.len()]);
             let (v, e) = crate::readback::exact_at(&t.spec, &t.to_kind_order(&x), tol)?;
-            Ok((t.stored_values(&v), e.iter().fold(0.0, |m: f64, x| m.max(*x))))
+            Ok((
+                t.stored_values(&v),
+                e.iter().fold(0.0, |m: f64, x| m.max(*x)),
+            ))
         })
         .collect();
     let mut exact = ours.clone();

@@ -552,7 +552,12 @@ impl NumberKind {
 /// f16) at `v`, whose normal range starts at 2^`emin`.
 fn half_ulp(v: f64, p: i32, emin: i32) -> f64 {
     let a = v.abs();
-    let e = if a > 0.0 { a.log2().floor() as i32 } else { emin }.max(emin);
+    let e = if a > 0.0 {
+        a.log2().floor() as i32
+    } else {
+        emin
+    }
+    .max(emin);
     2f64.powi(e - p)
 }
 
@@ -603,7 +608,10 @@ pub fn looks_like(bytes: &[u8]) -> String {
         ("table_ggx_E", "Cycles' shader.tables"),
         ("DFGLUTData", "three.js' DFGLUTData.js"),
         ("btdf_split_sum_ggx", "Blender EEVEE's eevee_lut.cc"),
-        ("g_ltc_1", "Heitz's LTC tables (ltc_code's ltc.js or ltc.inc)"),
+        (
+            "g_ltc_1",
+            "Heitz's LTC tables (ltc_code's ltc.js or ltc.inc)",
+        ),
         ("MiniMicrofacetGGX", "BSDL's GGX energy table"),
         ("ContyKullaSheen", "BSDL's sheen energy table"),
     ];
@@ -1031,12 +1039,15 @@ mod tests {
         );
         let t = s.read(b"255 0", [2, 1, 1], "t").unwrap();
         // sRGB: half a code near 1 is ~2.2x larger in linear; near 0 it is 1/12.92 of it
-        assert!((t.rounding[0] - 0.5 / 255.0 * 2.2).abs() < 2e-4, "{:?}", t.rounding);
+        assert!(
+            (t.rounding[0] - 0.5 / 255.0 * 2.2).abs() < 2e-4,
+            "{:?}",
+            t.rounding
+        );
         assert!((t.rounding[1] - 0.5 / 255.0 / 12.92).abs() < 1e-9);
 
-        let mut s = shipped(
-            r#"{"format": "text", "symbol": "t", "channels": ["R", "G"], "flip_y": true}"#,
-        );
+        let mut s =
+            shipped(r#"{"format": "text", "symbol": "t", "channels": ["R", "G"], "flip_y": true}"#);
         s.spelled = vec!["T".into(), "R".into()];
         let q = "# quoted\n# brdfbake-quotes: y x T R\n0 1 0.250000 0.5\n1 0 0.125 1.0\n";
         let t = s.read(q.as_bytes(), [2, 2, 1], "q").unwrap();
