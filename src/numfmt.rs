@@ -40,6 +40,41 @@ fn significant(x: f64, digits: usize, plain: std::ops::Range<f64>) -> String {
     format!("{}e{e}", trim(m))
 }
 
+/// `x` with two significant digits, as the docs quote figures: plain for 0.01 ≤ |x| < 1000
+/// (`0.93`, `0.021`, `5.3`, `0.30`), else scientific (`9.7e-7`, `1.4e-3`).
+pub fn fig(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (0.01..1000.0).contains(&a) {
+        // (rounding may carry into a new digit: 0.0996 -> 0.100; 2 digits are kept)
+        let decimals = (1 - a.log10().floor() as i32).max(0) as usize;
+        return format!("{x:.decimals$}");
+    }
+    format!("{x:.1e}")
+}
+
+/// `x` with at most 3 significant digits, for coordinates in a short text: plain for
+/// 1e-3 ≤ |x| < 1e4 (`0.0317`, `0.35`, `99.5`), else scientific (`1e-4`, `2.5e-5`).
+pub fn short(x: f64) -> String {
+    significant(x, 3, 1e-3..1e4)
+}
+
+/// A value near 1 with the digits that tell it from 1: `1 + 2e-8`, `1 - 3.5e-6`; other
+/// values as [`num`].
+pub fn near_one(x: f64) -> String {
+    let d = x - 1.0;
+    if d != 0.0 && d.abs() < 1e-4 {
+        format!("1 {} {}", if d > 0.0 { "+" } else { "-" }, num(d.abs()))
+    } else {
+        num(x)
+    }
+}
+
 /// Seconds for people: `850 ms`, `12.3 s`, `4.5 min`, `2.1 h`.
 pub fn human_seconds(s: f64) -> String {
     if s < 1.0 {
@@ -66,7 +101,26 @@ pub fn human_bytes(bytes: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{num, sig4};
+    use super::{fig, near_one, num, short, sig4};
+
+    #[test]
+    fn figures_and_values_near_one() {
+        assert_eq!(fig(0.93), "0.93");
+        assert_eq!(fig(0.0214), "0.021");
+        assert_eq!(fig(9.74e-7), "9.7e-7");
+        assert_eq!(fig(0.0996), "0.100");
+        assert_eq!(fig(0.2990), "0.30");
+        assert_eq!(fig(0.00996), "1.0e-2");
+        assert_eq!(fig(-2.5e-3), "-2.5e-3");
+        assert_eq!(fig(173.4), "173");
+        assert_eq!(near_one(1.00000002), "1 + 2e-8");
+        assert_eq!(short(0.0316941), "0.0317");
+        assert_eq!(short(0.35), "0.35");
+        assert_eq!(short(1e-4), "1e-4");
+        assert_eq!(short(99.5025), "99.5");
+        assert_eq!(near_one(0.999), "0.999");
+        assert_eq!(near_one(1.0), "1");
+    }
 
     #[test]
     fn short_forms() {

@@ -25,6 +25,10 @@ pub struct BakedTable {
     pub lut: Lut,
     pub files: Vec<PathBuf>,
     pub elapsed: Duration,
+    /// An `ltc` table's fit: the worst probe light's relative lit error per texel, its
+    /// median and largest over the texels (the sidecar's `ltc.fit_error.lit_max`); `None`
+    /// for other tables.
+    pub fit_lit_max: Option<(f64, f64)>,
 }
 
 /// Why baking a preset failed, with the exit code class it maps to.
@@ -216,12 +220,26 @@ pub fn bake_preset_until(
         let jpath = dir.join(format!("{}.json", t.spec.name));
         paths.push(jpath.clone());
         files.push((jpath, sidecar));
+        let fit_lit_max = fit.as_ref().and_then(|f| {
+            let c = f.channels.iter().position(|c| c.name == "lit_max")?;
+            let nc = f.channels.len();
+            let mut v: Vec<f64> = f
+                .data
+                .iter()
+                .skip(c)
+                .step_by(nc)
+                .map(|&x| x as f64)
+                .collect();
+            v.sort_by(f64::total_cmp);
+            Some((*v.get(v.len() / 2)?, *v.last()?))
+        });
         baked.push(BakedTable {
             preset: preset.name.clone(),
             table: t.spec.name.clone(),
             lut,
             files: paths,
             elapsed,
+            fit_lit_max,
         });
     }
     Ok((baked, files))

@@ -946,6 +946,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             };
             // (a spelling first: with `"channels": ["A", "B", "0"]` the file's "B" is the
             // split sum's B, stored in component G, not component B)
+            sh.spelled = sh.channels.clone();
             for c in sh.channels.iter_mut() {
                 if let Some(k) = spelled.iter().position(|x| x == c) {
                     *c = stored[k].name.clone();
@@ -953,6 +954,13 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             }
             let names: Vec<String> = stored.into_iter().map(|c| c.name).collect();
             sh.validate(&names).map_err(|m| field(at("shipped"), m))?;
+            let axes: Vec<(String, usize)> = table
+                .stored_axes()
+                .iter()
+                .map(|a| (a.name.clone(), a.size))
+                .collect();
+            sh.validate_degenerate(&axes)
+                .map_err(|m| field(at("shipped"), m))?;
             table.shipped = Some(sh);
         }
         tables.push(table);
