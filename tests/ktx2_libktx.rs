@@ -48,7 +48,7 @@ fn value(t: [usize; 3], c: usize) -> f32 {
         0.333_333_34,
     ];
     let i = (t[2] * 7 + t[1]) * 13 + t[0];
-    if (i + c) % 5 == 0 {
+    if (i + c).is_multiple_of(5) {
         SPECIAL[(i / 5 + c) % SPECIAL.len()]
     } else {
         (i as f32 * 0.37 + c as f32 * 1.91).sin() * 10f32.powi((i % 7) as i32 - 3)
@@ -61,7 +61,7 @@ fn value(t: [usize; 3], c: usize) -> f32 {
 fn unorm_value(t: [usize; 3], c: usize) -> f32 {
     const SPECIAL: [f32; 7] = [0.0, 1.0, 0.5, 1.0 + 1e-6, -1e-6, 1e-8, 0.999_999];
     let i = (t[2] * 7 + t[1]) * 13 + t[0];
-    if (i + c) % 4 == 0 {
+    if (i + c).is_multiple_of(4) {
         SPECIAL[(i / 4 + c) % SPECIAL.len()]
     } else {
         0.5 + 0.5 * (i as f32 * 0.37 + c as f32 * 1.91).sin()
@@ -356,7 +356,7 @@ fn run_ktx2check(bytes: &[u8], level_length: usize, alignment: usize, what: &str
         .collect();
     let quirk_only = issues.len() == 1 && issues[0].contains(KTX2CHECK_TRAILING_PADDING_QUIRK);
     assert!(
-        quirk_only && level_length % alignment != 0,
+        quirk_only && !level_length.is_multiple_of(alignment),
         "{what}: ktx2check rejected the file:\n{report}"
     );
 }

@@ -305,11 +305,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             p.display(),
         )));
     }
-    let threads = rayon::current_num_threads();
-    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
-    // a table baked here)
-    // (and the sidecar's ltc.fit_error section, for an ltc table read from files)
-    let mut jobs: Vec<(
+    /// (label, table, texels, scale, lookup_error, fit_error section, what is checked)
+    type Job = (
         String,
         crate::preset::PresetTable,
         Lut,
@@ -317,7 +314,12 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         serde_json::Value,
         Option<serde_json::Value>,
         Checked,
-    )> = Vec::new();
+    );
+    let threads = rayon::current_num_threads();
+    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
+    // a table baked here)
+    // (and the sidecar's ltc.fit_error section, for an ltc table read from files)
+    let mut jobs: Vec<Job> = Vec::new();
     let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
     if let Some(sc) = schema.as_deref() {

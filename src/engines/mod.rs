@@ -301,8 +301,8 @@ fn quoted_reference(
             }),
             None => CompareError::Input(m),
         })?;
-        for c in 0..nc {
-            exact.data[i * nc + c] = v[c] as f32;
+        for (d, x) in exact.data[i * nc..(i + 1) * nc].iter_mut().zip(&v) {
+            *d = *x as f32;
         }
         err = err.max(e);
     }
