@@ -49,16 +49,20 @@ fn sandbox() -> tempfile::TempDir {
 }
 
 fn run(dir: &Path, args: &[&str]) -> Output {
-    let path = format!(
-        "{}:{}",
-        dir.join("bin").display(),
-        std::env::var("PATH").unwrap_or_default()
-    );
+    // the caller's PATH without a venv: scripts/test (and CI) put the real judges' venv on
+    // it, whose python3 would find OpenEXR where this machine must not
+    let inherited = std::env::var("PATH").unwrap_or_default();
+    let inherited: Vec<&str> = inherited
+        .split(':')
+        .filter(|p| !Path::new(p).join("activate").exists())
+        .collect();
+    let path = format!("{}:{}", dir.join("bin").display(), inherited.join(":"));
     Command::new("bash")
         .arg(dir.join("repo/scripts/test"))
         .args(args)
         .env("PATH", path)
         .env("PIP_NO_INDEX", "1")
+        .env_remove("VIRTUAL_ENV")
         .env_remove("BRDFBAKE_JUDGES")
         .output()
         .expect("bash runs")
