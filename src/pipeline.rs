@@ -3,8 +3,9 @@
 //! Nothing is written until every table of the preset has baked and encoded, and then all
 //! files are replaced atomically, so a failure never leaves a partial or mixed set.
 
+use crate::encode::dds::DdsEncoder;
 use crate::encode::exr::ExrEncoder;
-use crate::encode::ktx2::Ktx2Encoder;
+use crate::encode::ktx2::{Ktx2Encoder, Supercompression};
 use crate::encode::png::PngPreview;
 use crate::encode::png_data::PngData;
 use crate::encode::shader::{ShaderLang, ShaderSnippet};
@@ -71,7 +72,17 @@ pub fn encode(
             storage: table.spec.storage,
             table_name: name,
         }),
-        Format::Ktx2 => one(&Ktx2Encoder {
+        Format::Ktx2 | Format::Ktx2Zstd => one(&Ktx2Encoder {
+            storage: table.spec.storage,
+            table_name: name,
+            array_3d: table.layout_3d == Layout3d::Array,
+            supercompression: if format == Format::Ktx2Zstd {
+                Supercompression::Zstd
+            } else {
+                Supercompression::None
+            },
+        }),
+        Format::Dds => one(&DdsEncoder {
             storage: table.spec.storage,
             table_name: name,
             array_3d: table.layout_3d == Layout3d::Array,

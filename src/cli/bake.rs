@@ -17,7 +17,7 @@ pub struct BakeArgs {
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
     /// Output formats for every table, overriding the presets' (comma-separated:
-    /// exr, ktx2, png, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
+    /// exr, ktx2, ktx2-zstd, dds, png, png-data, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
     #[arg(long, value_name = "LIST")]
     pub format: Option<String>,
     /// Print nothing but errors.
@@ -56,6 +56,9 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
         } else if *f == Format::PngData {
             // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
             keys.push("png".to_string());
+        } else if f.is_ktx2() {
+            // (ktx2-zstd is TABLE.ktx2 too; the sidecar says which)
+            keys.push("ktx2".to_string());
         } else {
             keys.push(f.name().to_string());
         }
@@ -125,7 +128,25 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
                 }
             }
             let files = sidecar.get("files");
-            for key in expected_keys(t, formats.unwrap_or(&t.formats)) {
+            let wanted = formats.unwrap_or(&t.formats);
+            // a KTX2 file supercompressed as asked (the input hash does not hold the formats)
+            let zstd = sidecar
+                .pointer("/storage/ktx2/supercompression")
+                .and_then(|v| v.as_str())
+                == Some("zstd");
+            let ktx2 = dir.join(format!("{}.ktx2", t.spec.name));
+            if wanted.contains(&Format::Ktx2Zstd) && !zstd {
+                bad(
+                    ktx2.clone(),
+                    "written as plain ktx2, ktx2-zstd asked for".into(),
+                );
+            } else if wanted.contains(&Format::Ktx2) && zstd {
+                bad(
+                    ktx2.clone(),
+                    "written as ktx2-zstd, plain ktx2 asked for".into(),
+                );
+            }
+            for key in expected_keys(t, wanted) {
                 let name = format!("{}.{key}", t.spec.name);
                 let path = dir.join(&name);
                 if files.and_then(|f| f.get(&key)).is_none() {

@@ -298,9 +298,9 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "png") {
+    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "dds" | "png") {
         return Err(CliError::input(format!(
-            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2 or png-data .png \
+            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2, .dds or png-data .png \
              texture brdfbake wrote, or its .json sidecar",
             p.display(),
         )));
@@ -333,7 +333,9 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             )));
         }
     }
-    if matches!(ext, "exr" | "ktx2" | "png") || schema.as_deref() == Some(crate::meta::SCHEMA) {
+    if matches!(ext, "exr" | "ktx2" | "dds" | "png")
+        || schema.as_deref() == Some(crate::meta::SCHEMA)
+    {
         // the files' bytes, the texels as f32 and their f64 exact values: ~4 times the files
         let bytes = super::inspect::file_bytes(p);
         let d = a.guards.admit(&super::guards::Work {
