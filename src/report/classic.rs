@@ -4,7 +4,8 @@
 //! by [`crate::laws::reciprocity`] at that parameter (≈ 15k BRDF evaluations, cheap), and
 //! where the table itself says the model reflects more than it receives (E > 1).
 
-use super::{esc, line_plot, Page, Series, PALETTE, TABLE_ATTRS};
+use super::page::{Page, PALETTE, TABLE_ATTRS};
+use super::svg::{esc, line_plot, Series};
 use crate::laws::reciprocity;
 use crate::table::TableKind;
 use std::fmt::Write;

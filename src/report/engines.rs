@@ -3,8 +3,8 @@
 //! channel, what the comparison found, and a heatmap of the shipped table's error.
 
 use super::heatmap::heatmap;
+use super::page::{Page, TABLE_ATTRS};
 use super::svg::esc;
-use super::{Page, TABLE_ATTRS};
 use crate::engines::Comparison;
 use crate::numfmt::num;
 use std::fmt::Write;

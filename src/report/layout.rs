@@ -8,8 +8,15 @@
 //! `viewBox` or overlaps another (the tests run it over every chart of a report, and
 //! measure the same in Chromium with the real font).
 
-use super::svg::esc;
 use std::fmt::Write;
+
+/// Escapes text for HTML.
+pub fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
 
 /// The report's font size, px.
 pub const FONT: f64 = 11.0;

@@ -5,8 +5,8 @@
 //! measures.
 
 use super::heatmap::heatmap;
+use super::page::{Page, TABLE_ATTRS};
 use super::svg::esc;
-use super::{Page, TABLE_ATTRS};
 use crate::lut::Lut;
 use std::fmt::Write;
 

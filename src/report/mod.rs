@@ -21,6 +21,7 @@ use crate::table::{DfgLayout, TableKind, TableSpec};
 pub use heatmap::heatmap;
 pub use layout::layout_problems;
 pub use page::Page;
+use page::{PALETTE, TABLE_ATTRS};
 use std::fmt::Write;
 pub use svg::{esc, line_plot, Series};
 
@@ -71,13 +72,6 @@ fn roughness_picks(spec: &TableSpec) -> Vec<f64> {
     let (lo, hi) = (a.coord(0), a.coord(a.size - 1));
     (0..5).map(|i| lo + (hi - lo) * i as f64 / 4.0).collect()
 }
-
-/// The attributes of the page's tables of numbers.
-const TABLE_ATTRS: &str = " border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\"";
-
-const PALETTE: [&str; 6] = [
-    "#440154", "#3b528b", "#21918c", "#5ec962", "#c8a900", "#d1495b",
-];
 
 fn table_section(t: &ReportTable, out: &mut Page) {
     let spec = &t.spec;

@@ -1,9 +1,18 @@
 //! The report page being written: its sections, sub-headings and tables, each with an id,
 //! and the table of contents that links to every one of them.
 
-use super::svg::esc;
+use super::layout::esc;
 use std::collections::BTreeSet;
 use std::fmt;
+
+/// The attributes of the page's tables of numbers.
+pub(super) const TABLE_ATTRS: &str =
+    " border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\"";
+
+/// Line colours of the plots (viridis-like, then two warm ones).
+pub(super) const PALETTE: [&str; 6] = [
+    "#440154", "#3b528b", "#21918c", "#5ec962", "#c8a900", "#d1495b",
+];
 
 /// The id of the table of contents itself.
 pub const CONTENTS_ID: &str = "contents";

@@ -5,13 +5,7 @@
 use super::layout::{text_width, wrap, Anchor, Canvas, Label, FONT, LINE};
 use std::fmt::Write;
 
-/// Escapes text for HTML.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
+pub use super::layout::esc;
 
 /// A line of a plot.
 pub struct Series {
