@@ -53,6 +53,7 @@ pub mod quadrature;
 pub mod readback;
 pub mod report;
 pub mod resources;
+pub mod signals;
 pub mod table;
 pub mod write;
 

@@ -14,5 +14,8 @@ fn main() {
         libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    // SIGINT/SIGTERM/SIGHUP while outputs are being replaced end the process only once the
+    // directory under way is complete (brdfbake::signals)
+    brdfbake::signals::install();
     std::process::exit(brdfbake::cli::run(std::env::args_os()));
 }

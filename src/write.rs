@@ -36,13 +36,22 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
     Ok(())
 }
 
-/// Atomically replaces (or creates) several files: first every temporary file is written
-/// and flushed, then all are renamed. A failure while writing changes no output file; the
-/// temporary files are always removed.
+/// Atomically replaces (or creates) several files, all or nothing per directory: first every
+/// file is written and flushed, then each directory's set is put in place in one step.
 ///
-/// Files are renamed in the order given (the pipeline puts every sidecar last). Leftover
-/// temporary files of killed writers in the target directories are removed first
-/// ([`sweep_leftovers`]).
+/// For a directory that holds only regular files and links (a preset's output folder), a
+/// complete copy of it is staged next to it — the unchanged files hard-linked, the new ones
+/// written — and exchanged with it in one `renameat2(RENAME_EXCHANGE)` (Linux): a reader,
+/// even one that looks while the process is killed, sees the whole old set or the whole new
+/// one. Elsewhere (a directory holding subdirectories, a file system or system without the
+/// exchange) the files are renamed one by one in the order given (the pipeline puts every
+/// sidecar last, so readers find a set interrupted between renames through the sidecar's
+/// digests). Concurrent writers of one directory are serialized by a lock on it.
+///
+/// A failure before the first directory is put in place changes nothing; the staged copies
+/// are always removed. SIGINT/SIGTERM/SIGHUP arriving meanwhile are held ([`crate::signals`])
+/// until the directory being exchanged is complete, then end the process. Leftovers of killed
+/// writers are removed first ([`sweep_leftovers`]).
 pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(
     files: &[(P, B)],
 ) -> Result<(), WriteError> {
@@ -55,11 +64,18 @@ pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(
             return Err(WriteError::DuplicatePath(path.to_path_buf()));
         }
     }
-    let mut dirs: Vec<&Path> = files.iter().map(|&(p, _)| parent(p)).collect();
-    dirs.sort();
-    dirs.dedup();
-    for d in dirs {
+    // the directories, in the order of their first file
+    let mut dirs: Vec<&Path> = Vec::new();
+    for &(p, _) in &files {
+        if !dirs.contains(&parent(p)) {
+            dirs.push(parent(p));
+        }
+    }
+    for d in &dirs {
         sweep_leftovers(d);
+        if let Some(up) = staging_parent(d) {
+            sweep_leftovers(up);
+        }
     }
 
     // A rename cannot replace a directory (or, portably, anything but a file): find that
@@ -81,40 +97,397 @@ pub fn write_all_atomic<P: AsRef<Path>, B: AsRef<[u8]>>(
         }
     }
 
-    let mut temps: Vec<PathBuf> = Vec::with_capacity(files.len());
-    for &(path, bytes) in &files {
-        match prepare(path, bytes) {
-            Ok(tmp) => temps.push(tmp),
+    let critical = crate::signals::Critical::begin();
+    // locks in a fixed order (no two writers wait on each other)
+    let mut order: Vec<&Path> = dirs.clone();
+    order.sort();
+    let mut locks = Vec::new();
+    for d in order {
+        match lock_dir(d) {
+            Ok(l) => locks.push(l),
             Err(source) => {
-                for tmp in &temps {
-                    let _ = fs::remove_file(tmp);
-                }
+                // (named by its first file: the path the caller gave)
+                let first = files.iter().find(|(p, _)| parent(p) == d).map(|(p, _)| *p);
                 return Err(WriteError::Prepare {
-                    path: path.to_path_buf(),
-                    source,
+                    path: first.unwrap_or(d).to_path_buf(),
+                    source: io::Error::new(
+                        source.kind(),
+                        format!("cannot write {}: {source}", first.unwrap_or(d).display()),
+                    ),
                 });
             }
         }
     }
+    let mut staged: Vec<Staged> = Vec::with_capacity(dirs.len());
+    for d in &dirs {
+        let set: Vec<(&Path, &[u8])> = files
+            .iter()
+            .copied()
+            .filter(|(p, _)| parent(p) == *d)
+            .collect();
+        let result = if critical.interrupted().is_some() {
+            Err((
+                d.to_path_buf(),
+                io::Error::new(io::ErrorKind::Interrupted, "interrupted by a signal"),
+            ))
+        } else {
+            stage(d, &set)
+        };
+        match result {
+            Ok(s) => staged.push(s),
+            Err((path, source)) => {
+                for s in &staged {
+                    s.discard();
+                }
+                return Err(WriteError::Prepare { path, source });
+            }
+        }
+    }
 
+    let pause = std::env::var("BRDFBAKE_TEST_PAUSE_BEFORE_COMMIT")
+        .ok()
+        .and_then(|v| v.parse::<usize>().ok());
     let mut committed: Vec<PathBuf> = Vec::with_capacity(files.len());
-    for (i, (&(path, _), tmp)) in files.iter().zip(&temps).enumerate() {
-        if let Err(source) = commit(tmp, path) {
-            for tmp in &temps[i + 1..] {
-                let _ = fs::remove_file(tmp);
+    let total = files.len();
+    for (i, s) in staged.iter().enumerate() {
+        if pause == Some(i) {
+            test_pause(i, staged.len(), &critical);
+        }
+        if critical.interrupted().is_some() {
+            for s in &staged[i..] {
+                s.discard();
+            }
+            return Err(WriteError::Commit {
+                path: s.dir.clone(),
+                source: io::Error::new(io::ErrorKind::Interrupted, "interrupted by a signal"),
+                committed,
+                total,
+            });
+        }
+        if let Err((path, source)) = s.commit(&mut committed) {
+            for s in &staged[i + 1..] {
+                s.discard();
             }
             sync_dirs(&committed);
             return Err(WriteError::Commit {
-                path: path.to_path_buf(),
+                path,
                 source,
                 committed,
-                total: files.len(),
+                total,
             });
         }
-        committed.push(path.to_path_buf());
     }
     sync_dirs(&committed);
+    drop(locks);
+    critical.finish();
     Ok(())
+}
+
+/// A test hook (`BRDFBAKE_TEST_PAUSE_BEFORE_COMMIT=k`): before putting the k-th directory in
+/// place, say so on stderr and wait up to 30 s (or until a signal arrives), so a test can kill
+/// the process at every point of the commit.
+fn test_pause(i: usize, n: usize, critical: &crate::signals::Critical) {
+    eprintln!("brdfbake: paused before commit {i} of {n}");
+    let start = std::time::Instant::now();
+    while critical.interrupted().is_none() && start.elapsed().as_secs() < 30 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+/// The directory a staged copy of `dir` is made in (its parent), if `dir` can be exchanged
+/// at all (it has a parent and a name).
+fn staging_parent(dir: &Path) -> Option<&Path> {
+    dir.file_name()?;
+    Some(parent(dir))
+}
+
+/// A lock on a directory, held until dropped (`flock` on the directory itself; re-taken if the
+/// directory was exchanged while waiting for it).
+struct DirLock {
+    #[cfg(unix)]
+    _file: fs::File,
+}
+
+fn lock_dir(dir: &Path) -> io::Result<DirLock> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        use std::os::unix::io::AsRawFd;
+        loop {
+            let f =
+                fs::File::open(dir).map_err(|e| describe(e, "cannot open the directory", dir))?;
+            // SAFETY: flock on a descriptor we own
+            if unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX) } != 0 {
+                return Err(describe(io::Error::last_os_error(), "cannot lock", dir));
+            }
+            // the directory may have been exchanged by the writer we waited for
+            let (held, now) = (f.metadata()?, fs::metadata(dir)?);
+            if held.ino() == now.ino() && held.dev() == now.dev() {
+                return Ok(DirLock { _file: f });
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = dir;
+        Ok(DirLock {})
+    }
+}
+
+/// A directory's new files, staged.
+struct Staged {
+    /// The directory.
+    dir: PathBuf,
+    /// A complete copy of the directory with the new files (exchange), or `None`: the new
+    /// files are the temporary files in `temps`, renamed one by one.
+    copy: Option<PathBuf>,
+    /// (temporary file, target) in the order given, when there is no copy.
+    temps: Vec<(PathBuf, PathBuf)>,
+    /// The targets, for [`WriteError::Commit`].
+    targets: Vec<PathBuf>,
+}
+
+impl Staged {
+    /// Removes what was staged.
+    fn discard(&self) {
+        if let Some(c) = &self.copy {
+            let _ = fs::remove_dir_all(c);
+        }
+        for (t, _) in &self.temps {
+            let _ = fs::remove_file(t);
+        }
+    }
+
+    /// Puts the new files in place: one exchange, or renames in order.
+    fn commit(&self, committed: &mut Vec<PathBuf>) -> Result<(), (PathBuf, io::Error)> {
+        if let Some(copy) = &self.copy {
+            match exchange(copy, &self.dir) {
+                Ok(()) => {
+                    // the copy's path now holds the old directory
+                    let _ = fs::remove_dir_all(copy);
+                    sync_dir(parent(&self.dir));
+                    committed.extend(self.targets.iter().cloned());
+                    return Ok(());
+                }
+                // a file system without the exchange (EINVAL): the new files one by one
+                Err(e)
+                    if e.raw_os_error() == Some(EINVAL)
+                        || e.kind() == io::ErrorKind::Unsupported =>
+                {
+                    for path in &self.targets {
+                        let from = copy.join(path.file_name().expect("a file path"));
+                        if let Err(e) = commit(&from, path) {
+                            let _ = fs::remove_dir_all(copy);
+                            return Err((path.clone(), e));
+                        }
+                        committed.push(path.clone());
+                    }
+                    let _ = fs::remove_dir_all(copy);
+                    return Ok(());
+                }
+                Err(e) => {
+                    let _ = fs::remove_dir_all(copy);
+                    return Err((
+                        self.dir.clone(),
+                        describe(e, "cannot put in place the new files of", &self.dir),
+                    ));
+                }
+            }
+        }
+        for (i, (tmp, path)) in self.temps.iter().enumerate() {
+            if let Err(e) = commit(tmp, path) {
+                for (t, _) in &self.temps[i + 1..] {
+                    let _ = fs::remove_file(t);
+                }
+                return Err((path.clone(), e));
+            }
+            committed.push(path.clone());
+        }
+        Ok(())
+    }
+}
+
+/// Stages the new `files` of `dir`: as a complete copy of the directory when it can be
+/// exchanged, else as temporary files next to their targets.
+fn stage(dir: &Path, files: &[(&Path, &[u8])]) -> Result<Staged, (PathBuf, io::Error)> {
+    let targets: Vec<PathBuf> = files.iter().map(|(p, _)| p.to_path_buf()).collect();
+    if let Some(copy) = exchangeable(dir)
+        .then(|| staging_copy(dir, files))
+        .transpose()?
+        .flatten()
+    {
+        return Ok(Staged {
+            dir: dir.to_path_buf(),
+            copy: Some(copy),
+            temps: Vec::new(),
+            targets,
+        });
+    }
+    let mut temps = Vec::with_capacity(files.len());
+    for &(path, bytes) in files {
+        match prepare(path, bytes) {
+            Ok(tmp) => temps.push((tmp, path.to_path_buf())),
+            Err(e) => {
+                for (t, _) in &temps {
+                    let _ = fs::remove_file(t);
+                }
+                return Err((path.to_path_buf(), e));
+            }
+        }
+    }
+    Ok(Staged {
+        dir: dir.to_path_buf(),
+        copy: None,
+        temps,
+        targets,
+    })
+}
+
+/// Whether `dir` may be replaced by an exchange: a real directory (not a link to one) with a
+/// parent, on a system that has the exchange.
+fn exchangeable(dir: &Path) -> bool {
+    cfg!(target_os = "linux")
+        && staging_parent(dir).is_some()
+        && fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir())
+}
+
+/// A complete copy of `dir` with `files` written into it, made next to `dir`: its other
+/// regular files hard-linked (copied where a link is refused), its links recreated. `None`
+/// when `dir` holds something else (a subdirectory, a device): it is then written file by
+/// file.
+fn staging_copy(
+    dir: &Path,
+    files: &[(&Path, &[u8])],
+) -> Result<Option<PathBuf>, (PathBuf, io::Error)> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let fail = |p: &Path, e: io::Error| (p.to_path_buf(), e);
+    let entries: Vec<fs::DirEntry> = fs::read_dir(dir)
+        .map_err(|e| fail(dir, describe(e, "cannot read the directory", dir)))?
+        .collect::<io::Result<_>>()
+        .map_err(|e| fail(dir, describe(e, "cannot read the directory", dir)))?;
+    let new: Vec<&std::ffi::OsStr> = files.iter().filter_map(|(p, _)| p.file_name()).collect();
+    let mut carried = Vec::new();
+    for e in &entries {
+        let name = e.file_name();
+        if new.contains(&name.as_os_str()) || name.to_str().and_then(temp_owner).is_some() {
+            continue;
+        }
+        let t = e.file_type().map_err(|er| fail(&e.path(), er))?;
+        if !(t.is_file() || t.is_symlink()) {
+            return Ok(None);
+        }
+        carried.push((e.path(), t.is_symlink()));
+    }
+    let name = dir
+        .file_name()
+        .expect("exchangeable")
+        .to_string_lossy()
+        .into_owned();
+    let up = parent(dir);
+    let copy = loop {
+        let c = up.join(format!(
+            ".{name}{TEMP_MARK}{}-{}",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        match fs::create_dir(&c) {
+            Ok(()) => break c,
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => {
+                return Err(fail(
+                    dir,
+                    describe(e, "cannot create a staging directory next to", dir),
+                ))
+            }
+        }
+    };
+    let fill = || -> Result<(), (PathBuf, io::Error)> {
+        if let Ok(m) = fs::metadata(dir) {
+            let _ = fs::set_permissions(&copy, m.permissions());
+        }
+        for (p, link) in &carried {
+            let to = copy.join(p.file_name().expect("an entry"));
+            let r = if *link {
+                fs::read_link(p).and_then(|target| symlink(&target, &to))
+            } else {
+                fs::hard_link(p, &to).or_else(|_| fs::copy(p, &to).map(|_| ()))
+            };
+            r.map_err(|e| fail(p, describe(e, "cannot stage", p)))?;
+        }
+        for &(path, bytes) in files {
+            let to = copy.join(path.file_name().expect("a file path"));
+            let mut f = OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&to)
+                .map_err(|e| fail(path, describe(e, "cannot write", path)))?;
+            f.write_all(bytes)
+                .and_then(|()| f.sync_all())
+                .map_err(|e| fail(path, describe(e, "cannot write", path)))?;
+        }
+        sync_dir(&copy);
+        Ok(())
+    };
+    match fill() {
+        Ok(()) => Ok(Some(copy)),
+        Err(e) => {
+            let _ = fs::remove_dir_all(&copy);
+            Err(e)
+        }
+    }
+}
+
+#[cfg(unix)]
+fn symlink(target: &Path, link: &Path) -> io::Result<()> {
+    std::os::unix::fs::symlink(target, link)
+}
+
+#[cfg(not(unix))]
+fn symlink(_target: &Path, link: &Path) -> io::Result<()> {
+    Err(io::Error::new(
+        io::ErrorKind::Unsupported,
+        format!("cannot recreate the link {}", link.display()),
+    ))
+}
+
+#[cfg(unix)]
+const EINVAL: i32 = libc::EINVAL;
+#[cfg(not(unix))]
+const EINVAL: i32 = 22;
+
+/// Exchanges two directories in one step (`renameat2` with `RENAME_EXCHANGE`, Linux 3.15+).
+fn exchange(a: &Path, b: &Path) -> io::Result<()> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::ffi::CString;
+        use std::os::unix::ffi::OsStrExt;
+        let ca = CString::new(a.as_os_str().as_bytes())?;
+        let cb = CString::new(b.as_os_str().as_bytes())?;
+        // SAFETY: two NUL-terminated paths that live through the call
+        let r = unsafe {
+            libc::syscall(
+                libc::SYS_renameat2,
+                libc::AT_FDCWD,
+                ca.as_ptr(),
+                libc::AT_FDCWD,
+                cb.as_ptr(),
+                libc::RENAME_EXCHANGE,
+            )
+        };
+        if r == 0 {
+            Ok(())
+        } else {
+            Err(io::Error::last_os_error())
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = (a, b);
+        Err(io::Error::new(
+            io::ErrorKind::Unsupported,
+            "no directory exchange here",
+        ))
+    }
 }
 
 /// `io::Error` of the same kind, with `what` and the path in the message.
@@ -222,10 +595,16 @@ pub fn sweep_leftovers(dir: &Path) -> usize {
         let Some(pid) = name.to_str().and_then(temp_owner) else {
             continue;
         };
-        if alive(pid) || !e.file_type().is_ok_and(|t| t.is_file()) {
+        if alive(pid) {
             continue;
         }
-        if fs::remove_file(e.path()).is_ok() {
+        // a temporary file, or a staged copy of a directory (crate::write::staging_copy)
+        let gone = match e.file_type() {
+            Ok(t) if t.is_file() => fs::remove_file(e.path()).is_ok(),
+            Ok(t) if t.is_dir() => fs::remove_dir_all(e.path()).is_ok(),
+            _ => false,
+        };
+        if gone {
             removed += 1;
         }
     }

@@ -47,8 +47,11 @@ fn bake_ok(work: &Path, text: &str) -> BTreeMap<PathBuf, Vec<u8>> {
 
 /// Temporary files are dot-prefixed (`.<name>.tmp-<pid>-<n>`): never mistaken for outputs.
 fn is_temp(p: &Path) -> bool {
-    let name = p.file_name().unwrap().to_string_lossy();
-    name.starts_with('.') && name.contains(".tmp-")
+    // a temporary file, or a file in a staged copy of a directory (brdfbake::write)
+    p.components().any(|c| {
+        let name = c.as_os_str().to_string_lossy();
+        name.starts_with('.') && name.contains(".tmp-")
+    })
 }
 
 // ---------------------------------------------------------------------------------------
