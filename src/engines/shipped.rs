@@ -229,6 +229,9 @@ impl Shipped {
         }
         let nc = self.channels.len();
         let texels = dims[0] * dims[1] * dims[2];
+        // an image's width and height must be the table's: the same count of values in
+        // another shape would be read with the wrong stride
+        let mut image = None;
         let (raw, kinds) = match self.format {
             ShippedFormat::Text => {
                 let text = std::str::from_utf8(bytes).map_err(|_| {
@@ -239,9 +242,25 @@ impl Shipped {
                     text_array_with_decimals(text, self.symbol.as_deref(), values, name)?;
                 (raw, vec![values.number_kind(decimals); nc])
             }
-            ShippedFormat::Png => png_values(bytes, nc, name)?,
-            ShippedFormat::Exr => exr_values(bytes, nc, name)?,
+            ShippedFormat::Png | ShippedFormat::Exr => {
+                let (raw, kinds, size) = if self.format == ShippedFormat::Png {
+                    png_values(bytes, nc, name)?
+                } else {
+                    exr_values(bytes, nc, name)?
+                };
+                image = Some(size);
+                (raw, kinds)
+            }
         };
+        if let Some([w, h]) = image {
+            let (nx, rows) = (dims[0], dims[1] * dims[2]);
+            if self.offset == 0 && (w != nx || h != rows) {
+                return Err(format!(
+                    "{name}: the image is {w} × {h} pixels, the preset's table is {nx} × {rows} texels{}: the file's table and the preset's axes differ",
+                    if dims[2] > 1 { format!(" ({} slices of {} rows)", dims[2], dims[1]) } else { String::new() }
+                ));
+            }
+        }
         let want = self.offset + texels * nc;
         if self.format == ShippedFormat::Text && self.symbol.is_some() && raw.len() != want {
             return Err(format!(
@@ -252,7 +271,7 @@ impl Shipped {
                 if self.offset > 0 { format!(" after {} skipped", self.offset) } else { String::new() }
             ));
         }
-        if raw.len() < want {
+        if raw.len() != want {
             return Err(format!(
                 "{name}: {} values where the table needs {} ({} texels × {nc} channels{}): the file's table and the preset's axes differ",
                 raw.len().saturating_sub(self.offset),
@@ -826,7 +845,12 @@ const MAX_PNG_SIDE: u32 = 16384;
 
 /// The pixels of a PNG as values in [0, 1], channels interleaved, rows as stored (row 0
 /// first); `nc` must be its channel count.
-fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<NumberKind>), String> {
+/// The pixels (rows from the top), their storage kinds and the image's (width, height).
+fn png_values(
+    bytes: &[u8],
+    nc: usize,
+    name: &str,
+) -> Result<(Vec<f64>, Vec<NumberKind>, [usize; 2]), String> {
     let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
     // (the glTF Sample Viewer's lut_sheen_E.png carries an iCCP chunk whose CRC is wrong;
     // the pixels are intact, and the chunk does not change what they mean here)
@@ -887,12 +911,20 @@ fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<Numb
             65535.0,
         )
     };
-    Ok((values, vec![NumberKind::Unorm(max); nc]))
+    Ok((
+        values,
+        vec![NumberKind::Unorm(max); nc],
+        [w as usize, h as usize],
+    ))
 }
 
 /// The pixels of an EXR file's first layer, channels in the file's order, rows from the top
 /// of its data window (row 0 first).
-fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<NumberKind>), String> {
+fn exr_values(
+    bytes: &[u8],
+    nc: usize,
+    name: &str,
+) -> Result<(Vec<f64>, Vec<NumberKind>, [usize; 2]), String> {
     use exr::prelude::*;
     let image = read()
         .no_deep_data()
@@ -937,7 +969,7 @@ fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<Numb
             out[i * nc + c] = s;
         }
     }
-    Ok((out, kinds))
+    Ok((out, kinds, [size.width(), size.height()]))
 }
 
 #[cfg(test)]
