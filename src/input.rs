@@ -18,6 +18,35 @@ pub enum InputError {
     Io(String),
 }
 
+/// What a file type is, for messages: "a directory", "a FIFO", "a character device", ...
+pub fn kind_of(t: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a directory"
+    } else if t.is_symlink() {
+        "a link"
+    } else if t.is_file() {
+        "a regular file"
+    } else {
+        "something other than a file"
+    }
+}
+
 /// Reads the regular file `path` of at most `max_bytes`. `what` names what was expected, for
 /// messages (`"a preset .json file"`).
 pub fn read_regular(path: &Path, max_bytes: u64, what: &str) -> Result<Vec<u8>, InputError> {

@@ -1182,6 +1182,32 @@ fn table_spec(
             ))
         }
     };
+    // a V-groove table is the V-groove masking alone: any other model field would be ignored
+    if kind == TableKind::Vgroove {
+        let given: Vec<&str> = [
+            ("ndf", model.ndf.is_some()),
+            ("fresnel", model.fresnel.is_some()),
+            ("diffuse", model.diffuse.is_some()),
+            ("diffuse_model", model.diffuse_model.is_some()),
+            ("classic", model.classic.is_some()),
+            (
+                "masking",
+                model.masking.is_some_and(|m| m != Masking::VGroove),
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(n, set)| set.then_some(n))
+        .collect();
+        if let Some(first) = given.first() {
+            return Err((
+                format!("model.{first}"),
+                format!(
+                    "a vgroove table is the V-groove masking alone (Cook & Torrance 1982); it takes no {} (leave the model out, or give {{\"masking\": \"v-groove\"}})",
+                    given.join(", ")
+                ),
+            ));
+        }
+    }
     let masking = match (model.masking, kind) {
         (Some(m), _) => m,
         (None, TableKind::Ndf) => Masking::None,

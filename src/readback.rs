@@ -84,7 +84,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
     let (texture, sidecar_path) = match ext.as_str() {
         "exr" | "ktx2" | "dds" | "png" => {
             let j = path.with_extension("json");
-            (Some(path.to_path_buf()), j.is_file().then_some(j))
+            (Some(path.to_path_buf()), sidecar_beside(&j)?)
         }
         "json" => (None, Some(path.to_path_buf())),
         _ => {
@@ -210,6 +210,34 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         rb.texture = Some(t);
     }
     Ok(rb)
+}
+
+/// The sidecar at `j` beside a texture: `None` when nothing is there; an error when something
+/// other than a readable regular file is (a FIFO, a device, a directory, a link that loops or
+/// leads nowhere), which a reader must not open or silently skip.
+fn sidecar_beside(j: &Path) -> Result<Option<PathBuf>, ReadError> {
+    match std::fs::symlink_metadata(j) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => {
+            return Err(ReadError::Input(format!(
+                "{}: the sidecar's path cannot be read: {e}",
+                j.display()
+            )))
+        }
+        Ok(_) => {}
+    }
+    match std::fs::metadata(j) {
+        Ok(m) if m.is_file() => Ok(Some(j.to_path_buf())),
+        Ok(m) => Err(ReadError::Input(format!(
+            "{}: the sidecar's path holds {}, not a file: move it away, or put the table's sidecar there",
+            j.display(),
+            crate::input::kind_of(&m.file_type())
+        ))),
+        Err(e) => Err(ReadError::Input(format!(
+            "{}: the sidecar's path is a link that loops or leads nowhere ({e})",
+            j.display()
+        ))),
+    }
 }
 
 /// Rebuilds the table a sidecar describes by turning it back into a preset table and

@@ -90,3 +90,173 @@ fn assert_no_outputs(d: &Path) {
         );
     }
 }
+
+fn albedo_preset(roughness_range: &str) -> String {
+    format!(
+        r#"{{"schema": "brdfbake.preset/1", "tables": [{{"name": "e", "kind": "albedo",
+          "model": {{"ndf": "ggx", "masking": "smith-height-correlated"}},
+          "axes": {{"cos_theta_v": {{"size": 8}},
+                   "roughness": {{"size": 8, "quantity": "perceptual", "range": {roughness_range}}}}}}}]}}"#
+    )
+}
+
+/// Negative roughness (a perceptual r squares to a positive alpha: a mirrored table) and a
+/// range past alpha = 1 (which used to fail as a tolerance miss) are range errors; `eval`
+/// refuses a negative roughness by its flag.
+#[test]
+fn roughness_out_of_range_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (range, shown) in [
+        ("[-1, 0]", "got [-1, 0]"),
+        ("[0, 2]", "got [0, 2]"),
+        ("[-0.5, 0.5]", "got [-0.5, 0.5]"),
+    ] {
+        fs::write(d.join("r.json"), albedo_preset(range)).unwrap();
+        let o = run(d, &["bake", "r.json", "--out", "out"]);
+        assert_fails(
+            &o,
+            INPUT,
+            &["axes.roughness.range", "within [0, 1]", shown],
+            range,
+        );
+    }
+    assert!(!d.join("out").exists());
+    for args in [
+        &["eval", "dfg", "--roughness=-1", "--cos-theta", "0.5"][..],
+        &["eval", "dfg", "--roughness", "-0.25", "--cos-theta", "0.5"],
+        &["eval", "dfg", "--alpha", "-0.1", "--cos-theta", "0.5"],
+    ] {
+        let o = run(d, args);
+        assert_fails(&o, INPUT, &["is negative"], &format!("{args:?}"));
+    }
+}
+
+/// Fields that used to be ignored are errors naming them: a model on a vgroove table, an
+/// empty `symbol`, a shipped channel listed twice (named as the preset writes it).
+#[test]
+fn ignored_fields_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let vgroove = r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "g", "kind": "vgroove",
+      "model": MODEL,
+      "axes": {"n_dot_l": {"size": 4}, "n_dot_h": {"size": 4}, "n_dot_v": {"size": 4}}}]}"#;
+    for (model, field) in [
+        (r#"{"ndf": "ggx"}"#, "model.ndf"),
+        (r#"{"masking": "smith-separable"}"#, "model.masking"),
+        (
+            r#"{"fresnel": {"type": "dielectric", "eta": 1.5}}"#,
+            "model.fresnel",
+        ),
+    ] {
+        fs::write(d.join("v.json"), vgroove.replace("MODEL", model)).unwrap();
+        let o = run(d, &["bake", "v.json", "--out", "out"]);
+        assert_fails(&o, INPUT, &[field, "V-groove masking alone"], model);
+    }
+    // the model the kind implies is accepted
+    fs::write(
+        d.join("v.json"),
+        vgroove.replace("MODEL", r#"{"masking": "v-groove"}"#),
+    )
+    .unwrap();
+    let o = run(d, &["bake", "v.json", "--out", "out", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+
+    let root = env!("CARGO_MANIFEST_DIR");
+    let edit = |preset: &str, f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v: serde_json::Value = serde_json::from_str(
+            &fs::read_to_string(format!("{root}/presets/engines/{preset}.json")).unwrap(),
+        )
+        .unwrap();
+        f(&mut v["tables"][0]["shipped"]);
+        fs::write(d.join("e.json"), v.to_string()).unwrap();
+    };
+    edit("cycles-ggx-e", &|s| s["symbol"] = "".into());
+    let o = run(
+        d,
+        &[
+            "compare",
+            "e.json",
+            &format!("{root}/tests/data/engines/cycles/shader.tables"),
+        ],
+    );
+    assert_fails(&o, INPUT, &["shipped", "symbol is empty"], "symbol");
+    edit("bsdl-ggx-energy", &|s| {
+        s["channels"] = serde_json::json!(["1-E", "1-E"])
+    });
+    let o = run(
+        d,
+        &[
+            "compare",
+            "e.json",
+            &format!("{root}/tests/data/engines/bsdl/MiniMicrofacetGGX.txt"),
+        ],
+    );
+    assert_fails(
+        &o,
+        INPUT,
+        &["channels[1]: \"1-E\" is listed twice"],
+        "channels",
+    );
+}
+
+/// A texture whose sidecar path holds something other than a file (a FIFO, a link to a
+/// device, a link loop) is refused, saying what was found, instead of read as having no
+/// sidecar.
+#[test]
+fn a_sidecar_path_that_is_not_a_file_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = run(d, &["bake", "filament-dfg", "--out", "out", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    fs::copy(d.join("out/filament-dfg/dfg.exr"), d.join("x.exr")).unwrap();
+    let side = d.join("x.json");
+    let fifo = std::ffi::CString::new(side.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a NUL-terminated path
+    assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
+    let cases: [(&dyn Fn(), &str); 3] = [
+        (&|| {}, "holds a FIFO"),
+        (
+            &|| {
+                fs::remove_file(&side).unwrap();
+                std::os::unix::fs::symlink("/dev/zero", &side).unwrap();
+            },
+            "holds a character device",
+        ),
+        (
+            &|| {
+                fs::remove_file(&side).unwrap();
+                std::os::unix::fs::symlink("x.json", &side).unwrap();
+            },
+            "loops or leads nowhere",
+        ),
+    ];
+    for (setup, expect) in cases {
+        setup();
+        for cmd in ["inspect", "verify", "probe"] {
+            let mut args = vec![cmd, "x.exr"];
+            if cmd == "probe" {
+                args.extend(["--at", "cos_theta_v=0.5,roughness=0.5"]);
+            }
+            let o = cli::run_within(d, &args, std::time::Duration::from_secs(60));
+            assert_fails(&o, INPUT, &["x.json", expect], &format!("{cmd}: {expect}"));
+        }
+    }
+}
+
+/// Control characters from a preset (ESC, BEL, NUL) reach the terminal escaped.
+#[test]
+fn control_characters_in_messages_are_escaped() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = "{\"schema\": \"brdfbake.preset/1\", \"tables\": [{\"name\": \"e\\u001b[31m\\u0007\\u0000\", \"kind\": \"no-such\\u001b]0;x\\u0007\"}]}";
+    fs::write(d.join("c.json"), text).unwrap();
+    let o = run(d, &["bake", "c.json", "--out", "out"]);
+    let err = cli::stderr(&o);
+    assert_eq!(o.status.code(), Some(INPUT), "{err}");
+    assert!(
+        !err.chars().any(|c| c.is_control() && c != '\n'),
+        "raw control characters: {err:?}"
+    );
+    assert!(err.contains("\\u{1b}"), "{err}");
+}

@@ -371,3 +371,55 @@ fn cli_on_files() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// `measured --out`: different file names never write the same files (a name that needs
+/// changing to be a file name gets a digest of itself), and `--fit` with `--no-fit` is an
+/// error, not ignored.
+#[test]
+fn measured_out_names_never_collide() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let names = [
+        "a b.binary",
+        "a_b.binary",
+        "a\u{202e}b.binary",
+        "a\u{1b}b.binary",
+    ];
+    for n in names {
+        std::fs::write(d.join(n), bytes()).unwrap();
+        let o = Command::new(env!("CARGO_BIN_EXE_brdfbake"))
+            .args([
+                "measured",
+                n,
+                "--albedo-size",
+                "4",
+                "--no-fit",
+                "--out",
+                "out",
+            ])
+            .current_dir(d)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{n}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let exr: Vec<String> = std::fs::read_dir(d.join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".exr"))
+        .collect();
+    assert_eq!(exr.len(), names.len(), "{exr:?}");
+    assert!(exr.contains(&"a_b-albedo.exr".to_string()), "{exr:?}");
+    let o = Command::new(env!("CARGO_BIN_EXE_brdfbake"))
+        .args(["measured", "a_b.binary", "--no-fit", "--fit", "ggx"])
+        .current_dir(d)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--no-fit") && err.contains("--fit"), "{err}");
+}

@@ -280,7 +280,8 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
     }
     if !a.quiet && !a.json {
         for (p, t, engine, w) in &warnings {
-            eprintln!("warning: {p}/{t} (engine {engine}): {w}");
+            let line = format!("{p}/{t} (engine {engine}): {w}");
+            eprintln!("warning: {}", super::error::terminal_safe(&line));
         }
     }
     let started = Instant::now();

@@ -76,3 +76,41 @@ pub(crate) fn bake_error(preset: &str, e: crate::table::BakeError) -> CliError {
 pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
     CliError::env(format!("cannot write to stdout: {e}"))
 }
+
+/// `s` safe to print on a terminal: control characters (ESC, BEL, NUL, ... but not newline
+/// and tab) and the Unicode direction overrides, which could come from a preset's keys or
+/// values or a file name, are written as escapes (`\u{1b}`), so a message cannot move the
+/// cursor, ring, recolour or reorder what the user reads.
+pub fn terminal_safe(s: &str) -> std::borrow::Cow<'_, str> {
+    let unsafe_char = |c: char| {
+        (c.is_control() && c != '\n' && c != '\t')
+            || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{200e}' | '\u{200f}')
+    };
+    if !s.chars().any(unsafe_char) {
+        return std::borrow::Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if unsafe_char(c) {
+            out.push_str(&format!("\\u{{{:x}}}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::terminal_safe;
+
+    #[test]
+    fn control_characters_are_escaped() {
+        assert_eq!(terminal_safe("plain\n\tline"), "plain\n\tline");
+        assert_eq!(
+            terminal_safe("a\u{1b}[31mb\u{7}\u{0}"),
+            "a\\u{1b}[31mb\\u{7}\\u{0}"
+        );
+        assert_eq!(terminal_safe("a\u{202e}b"), "a\\u{202e}b");
+    }
+}

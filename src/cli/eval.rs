@@ -179,6 +179,18 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             "--alpha/--roughness must be a finite number",
         ));
     }
+    // (a negative perceptual roughness would square to a positive alpha: refused by its sign)
+    if r < 0.0 {
+        let flag = if q == RoughnessQuantity::Alpha {
+            "--alpha"
+        } else {
+            "--roughness"
+        };
+        return Err(CliError::input(format!(
+            "{flag} {} is negative: a roughness is 0 or more",
+            crate::numfmt::num(r)
+        )));
+    }
     let alpha = q.to_alpha(r);
     use crate::model::ndf::{MAX_ALPHA, MIN_ALPHA};
     if !(MIN_ALPHA..=MAX_ALPHA).contains(&alpha) {

@@ -24,8 +24,9 @@ pub struct MeasuredArgs {
     pub no_fit: bool,
     /// The microfacet models to fit (each + Lambert, Schlick F0, per channel), comma-separated:
     /// ggx, beckmann (height-correlated Smith G2), cook-torrance (Beckmann, V-groove G).
-    #[arg(long, default_value = "ggx,beckmann")]
-    pub fit: String,
+    /// [default: ggx,beckmann]
+    #[arg(long, conflicts_with = "no_fit")]
+    pub fit: Option<String>,
     /// Also write the albedo as a table: DIR/<stem>-albedo.exr and its sidecar .json.
     #[arg(long, value_name = "DIR")]
     pub out: Option<std::path::PathBuf>,
@@ -57,7 +58,13 @@ pub fn run(a: MeasuredArgs) -> Result<(), CliError> {
     }
     super::guards::check_tolerance(a.tolerance)?;
     let mut ndfs: Vec<(&str, NdfKind, Masking)> = Vec::new();
-    for part in a.fit.split(',').map(str::trim) {
+    for part in a
+        .fit
+        .as_deref()
+        .unwrap_or("ggx,beckmann")
+        .split(',')
+        .map(str::trim)
+    {
         let n = FIT_MODELS.iter().find(|n| n.0 == part).ok_or_else(|| {
             CliError::input(format!(
                 "--fit: unknown model {part:?} (accepted: {})",

@@ -25,10 +25,14 @@ pub fn files(
     fits: &[(&str, Vec<Option<Fit>>)],
     out: &Path,
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
-    let stem = file
+    // the file's stem in the characters a file name can always hold; a stem that needed
+    // changing gets the first 8 hex digits of its own SHA-256, so that different stems
+    // ("a b", "a_b", "a\u{202e}b") never write the same files
+    let original = file
         .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("measured")
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "measured".into());
+    let mut stem = original
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
@@ -38,6 +42,15 @@ pub fn files(
             }
         })
         .collect::<String>();
+    let raw = file
+        .file_stem()
+        .map(|s| s.as_encoded_bytes())
+        .unwrap_or(b"measured");
+    if stem.as_bytes() != raw {
+        let digest = crate::digest::sha256(raw);
+        let hex = digest.rsplit(':').next().unwrap_or(&digest);
+        stem = format!("{stem}-{}", &hex[..8]);
+    }
     let name = format!("{stem}-albedo");
     let axis = Axis {
         name: "cos_theta_v".into(),

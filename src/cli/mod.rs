@@ -104,7 +104,7 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     match r {
         Ok(()) => EXIT_OK,
         Err(e) => {
-            eprintln!("error: {}", e.msg);
+            eprintln!("error: {}", error::terminal_safe(&e.msg));
             e.code
         }
     }

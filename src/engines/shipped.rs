@@ -174,11 +174,19 @@ impl Shipped {
                 ));
             }
             if c != "-" && self.channels[..k].contains(c) {
-                return Err(format!("channels[{k}]: {c:?} is listed twice"));
+                // (named as the preset writes it: `channels` may hold the stored names the
+                // preset's spellings were translated to)
+                let written = self.spelled.get(k).unwrap_or(c);
+                return Err(format!("channels[{k}]: {written:?} is listed twice"));
             }
         }
         if self.channels.iter().all(|c| c == "-") {
             return Err("channels: at least one channel must be compared (all are \"-\")".into());
+        }
+        if self.symbol.as_deref().is_some_and(|s| s.trim().is_empty()) {
+            return Err(
+                "symbol is empty: give the name of the array in the file (or leave symbol out to read every number)".into(),
+            );
         }
         if self.format != ShippedFormat::Text && (self.symbol.is_some() || self.values.is_some()) {
             return Err(format!(

@@ -199,6 +199,36 @@ impl TableSpec {
                         super::classic::check_parameter_axis(c, q, ax, &f)?;
                         continue;
                     }
+                    // every roughness coordinate is 0 or more (a negative perceptual r would
+                    // square to a positive alpha: a mirrored table), and alpha at most 1, the
+                    // domain the engines' tables span and the accuracy tests cover (beyond it
+                    // a table fails its tolerance instead of being refused)
+                    let max = match q {
+                        RoughnessQuantity::Alpha
+                        | RoughnessQuantity::Perceptual
+                        | RoughnessQuantity::CookTorranceM => 1.0,
+                        RoughnessQuantity::BlinnPhongExponent | RoughnessQuantity::Exponent => {
+                            f64::INFINITY
+                        }
+                    };
+                    if lo < 0.0 || hi > max {
+                        return Err(format!(
+                            "{f}.range must lie within [0, {}] ({} roughness{}), got [{}, {}]",
+                            if max.is_finite() {
+                                "1".to_string()
+                            } else {
+                                "inf".to_string()
+                            },
+                            q.name(),
+                            if max.is_finite() {
+                                ": alpha from 0 to 1, the domain whose tables are verified"
+                            } else {
+                                " exponent"
+                            },
+                            crate::numfmt::num(lo),
+                            crate::numfmt::num(hi)
+                        ));
+                    }
                     let ndf = self.model.ndf;
                     if let Some(n) = ndf {
                         if !q.applies_to(n) {
