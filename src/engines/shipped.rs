@@ -853,12 +853,12 @@ const MAX_PNG_SIDE: u32 = 16384;
 
 /// The pixels of a PNG as values in [0, 1], channels interleaved, rows as stored (row 0
 /// first); `nc` must be its channel count.
-/// The pixels (rows from the top), their storage kinds and the image's (width, height).
-fn png_values(
-    bytes: &[u8],
-    nc: usize,
-    name: &str,
-) -> Result<(Vec<f64>, Vec<NumberKind>, [usize; 2]), String> {
+/// An image's pixels (rows from the top, channels interleaved), their storage kinds per
+/// channel, and its (width, height).
+type ImageValues = (Vec<f64>, Vec<NumberKind>, [usize; 2]);
+
+/// The pixels of a PNG file (see [`ImageValues`]).
+fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String> {
     let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
     // (the glTF Sample Viewer's lut_sheen_E.png carries an iCCP chunk whose CRC is wrong;
     // the pixels are intact, and the chunk does not change what they mean here)
@@ -928,11 +928,7 @@ fn png_values(
 
 /// The pixels of an EXR file's first layer, channels in the file's order, rows from the top
 /// of its data window (row 0 first).
-fn exr_values(
-    bytes: &[u8],
-    nc: usize,
-    name: &str,
-) -> Result<(Vec<f64>, Vec<NumberKind>, [usize; 2]), String> {
+fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String> {
     use exr::prelude::*;
     let image = read()
         .no_deep_data()
