@@ -29,3 +29,22 @@ impl Deadline {
         std::time::Instant::now() >= self.at
     }
 }
+
+thread_local! {
+    /// The deadline of the work this thread runs for ([`scoped`]), for rules deep in a
+    /// computation (a 2D quadrature) that take no deadline argument.
+    static CURRENT: std::cell::Cell<Option<Deadline>> = const { std::cell::Cell::new(None) };
+}
+
+/// Runs `f` with `d` as this thread's current deadline ([`current_passed`]).
+pub fn scoped<T>(d: Deadline, f: impl FnOnce() -> T) -> T {
+    let before = CURRENT.with(|c| c.replace(Some(d)));
+    let out = f();
+    CURRENT.with(|c| c.set(before));
+    out
+}
+
+/// Whether this thread's current deadline ([`scoped`]) has passed (`false` without one).
+pub fn current_passed() -> bool {
+    CURRENT.with(|c| c.get()).is_some_and(|d| d.passed())
+}

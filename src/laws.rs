@@ -355,7 +355,13 @@ pub fn energy_until(
                     evals: 0,
                 }
             } else {
-                directional_albedo(m, t.to_radians(), p.to_radians(), tol)
+                match deadline {
+                    // (the rules inside stop refining once it passes: crate::quadrature::budget)
+                    Some(d) => crate::deadline::scoped(*d, || {
+                        directional_albedo(m, t.to_radians(), p.to_radians(), tol)
+                    }),
+                    None => directional_albedo(m, t.to_radians(), p.to_radians(), tol),
+                }
             };
             AlbedoAt {
                 theta_i_deg: t,
@@ -365,7 +371,8 @@ pub fn energy_until(
             }
         })
         .collect();
-    if stopped.into_inner() {
+    // (an albedo cut short by the deadline is not a value)
+    if stopped.into_inner() || deadline.is_some_and(|d| d.passed()) {
         return None;
     }
     let max = all

@@ -487,7 +487,7 @@ pub fn check_memory_of(
     limit: u64,
 ) -> Result<(), String> {
     if bytes <= limit {
-        return Ok(());
+        return address_space_check(what, detail, smaller, bytes);
     }
     Err(format!(
         "{what} needs an estimated {} of memory ({detail}), more than the limit of {}: raise it with \
@@ -496,6 +496,72 @@ pub fn check_memory_of(
         human_bytes(limit),
         suggest(bytes)
     ))
+}
+
+/// What each worker thread may map besides the work's own memory (its stack and the C
+/// allocator's arena), for [`address_space_check`].
+const PER_THREAD_MAPPING: u64 = 80 << 20;
+
+/// The work must also fit the process's address-space limit (`ulimit -v`, RLIMIT_AS, and
+/// RLIMIT_DATA), which `--max-memory` knows nothing of: past it an allocation fails, and Rust
+/// aborts the process. Refused here instead, naming the limit: what is mapped now, the work's
+/// estimate and [`PER_THREAD_MAPPING`] per thread must fit under it.
+fn address_space_check(what: &str, detail: &str, smaller: &str, bytes: u64) -> Result<(), String> {
+    let Some((limit, name)) = address_space_limit() else {
+        return Ok(());
+    };
+    let mapped = mapped_bytes().unwrap_or(0);
+    let threads = rayon::current_num_threads() as u64;
+    let need = mapped
+        .saturating_add(bytes)
+        .saturating_add(threads.saturating_mul(PER_THREAD_MAPPING));
+    if need <= limit {
+        return Ok(());
+    }
+    Err(format!(
+        "{what} needs an estimated {} of memory ({detail}), and with the {} this process has mapped \
+         and its {threads} thread(s) more than the address-space limit of {} ({name}, `ulimit -v`): \
+         raise that limit, use fewer --threads, or {smaller}",
+        human_bytes(bytes),
+        human_bytes(mapped),
+        human_bytes(limit)
+    ))
+}
+
+/// The smaller of RLIMIT_AS and RLIMIT_DATA, with its name, if either is set.
+fn address_space_limit() -> Option<(u64, &'static str)> {
+    #[cfg(unix)]
+    {
+        let get = |r| {
+            let mut l = libc::rlimit {
+                rlim_cur: 0,
+                rlim_max: 0,
+            };
+            // SAFETY: getrlimit writes the struct we own
+            let ok = unsafe { libc::getrlimit(r, &mut l) } == 0;
+            (ok && l.rlim_cur != libc::RLIM_INFINITY).then_some(l.rlim_cur as u64)
+        };
+        let as_ = get(libc::RLIMIT_AS).map(|v| (v, "RLIMIT_AS"));
+        let data = get(libc::RLIMIT_DATA).map(|v| (v, "RLIMIT_DATA"));
+        match (as_, data) {
+            (Some(a), Some(d)) => Some(if a.0 <= d.0 { a } else { d }),
+            (a, d) => a.or(d),
+        }
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+/// The process's mapped virtual memory now (Linux: /proc/self/statm), if known.
+fn mapped_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = text.split_whitespace().next()?.parse().ok()?;
+    #[cfg(unix)]
+    // SAFETY: sysconf has no preconditions
+    let page = unsafe { libc::sysconf(libc::_SC_PAGESIZE) }.max(4096) as u64;
+    #[cfg(not(unix))]
+    let page = 4096;
+    Some(pages * page)
 }
 
 /// A round `--max-memory` value at least `bytes`: whole GiB, or whole MiB below 1 GiB.

@@ -76,27 +76,36 @@ fn albedo_table(
             if deadline.passed() {
                 return None;
             }
-            let mu = (i as f64 + 0.5) / n as f64;
-            let t = mu.acos();
-            let mut err = 0.0f64;
-            let albedo = phis
-                .iter()
-                .map(|p| {
-                    let a = crate::laws::directional_albedo(m, t, p.to_radians(), tol);
-                    err = err.max(a.error);
-                    a.value
-                })
-                .collect();
-            let avg = crate::laws::azimuth_averaged_albedo(m, t, tol);
-            Some(TableRow {
-                mu,
-                albedo,
-                azimuth_average: avg.value,
-                error: err.max(avg.error),
-            })
+            // (the rules inside stop refining once it passes: crate::quadrature::budget)
+            crate::deadline::scoped(*deadline, || row(m, i, n, &phis, tol))
         })
         .collect();
+    if deadline.passed() {
+        return None;
+    }
     rows.into_iter().collect()
+}
+
+/// Row `i` of `n` of the albedo table: the albedo at each azimuth of `phis`, and averaged.
+fn row(m: &dyn Reflectance, i: usize, n: usize, phis: &[f64], tol: f64) -> Option<TableRow> {
+    let mu = (i as f64 + 0.5) / n as f64;
+    let t = mu.acos();
+    let mut err = 0.0f64;
+    let albedo = phis
+        .iter()
+        .map(|p| {
+            let a = crate::laws::directional_albedo(m, t, p.to_radians(), tol);
+            err = err.max(a.error);
+            a.value
+        })
+        .collect();
+    let avg = crate::laws::azimuth_averaged_albedo(m, t, tol);
+    Some(TableRow {
+        mu,
+        albedo,
+        azimuth_average: avg.value,
+        error: err.max(avg.error),
+    })
 }
 
 /// Every model name and its keys (with defaults), for `--help` and error messages.

@@ -7,8 +7,9 @@ use std::path::PathBuf;
 
 /// Tolerance of the exact reference computation.
 pub const EXACT_TOLERANCE: f64 = 1e-10;
-/// Relative tolerance of the exact lit value of an ltc table's polygon light (a 2D
-/// adaptive quadrature: 1e-9 keeps it to ~1 s on a narrow lobe, far below any fit's error).
+/// Relative tolerance the exact lit value of an ltc table's polygon light aims at (a 2D
+/// adaptive quadrature: 1e-9 keeps it to ~1 s on a narrow lobe, far below any fit's error);
+/// where the quadrature's own estimate is larger, probe prints it and says so.
 pub const LIT_TOLERANCE: f64 = 1e-9;
 
 #[derive(clap::Args, Debug)]
@@ -262,15 +263,31 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         if reversed {
             notes.push("--polygon is wound clockwise as seen from the shading point: the light is taken as two-sided (its vertices reversed)".into());
         }
-        let r = crate::table::ltc::lit_probe(
-            &table.spec,
-            &kind_x,
-            &looked_up,
-            &light,
-            a.f0,
-            LIT_TOLERANCE,
-        )
-        .map_err(|e| CliError::input(format!("--at {}: the lit value: {e}", a.at)))?;
+        let r = crate::deadline::scoped(deadline, || {
+            crate::table::ltc::lit_probe(
+                &table.spec,
+                &kind_x,
+                &looked_up,
+                &light,
+                a.f0,
+                LIT_TOLERANCE,
+            )
+        });
+        if deadline.passed() {
+            return Err(super::guards::stopped("this probe", &deadline));
+        }
+        let r = r.map_err(|e| CliError::input(format!("--at {}: the lit value: {e}", a.at)))?;
+        // the quadrature aims at LIT_TOLERANCE relative; where its own estimate says it got
+        // less, the figure printed is the one that holds
+        if r.exact_error > LIT_TOLERANCE * r.exact.abs() {
+            notes.push(format!(
+                "the exact lit value's error estimate {} is {} relative, above the {} the quadrature aims for (its evaluation budget ran out on this light): the exact value holds to that estimate, and the relative error to about {}",
+                crate::numfmt::short(r.exact_error),
+                crate::numfmt::short(r.exact_error / r.exact.abs().max(f64::MIN_POSITIVE)),
+                crate::numfmt::num(LIT_TOLERANCE),
+                crate::numfmt::short(r.exact_error / r.exact.abs().max(f64::MIN_POSITIVE))
+            ));
+        }
         if r.norm_computed {
             notes.push("the table holds no norm channel (Heitz's layout keeps it in ltc_2): the lit value uses brdfbake's albedo at the point, which that channel holds".into());
         }

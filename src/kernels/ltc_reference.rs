@@ -60,6 +60,10 @@ pub fn clip_to_halfspace(verts: &[[f64; 3]], n: [f64; 3]) -> Vec<[f64; 3]> {
     out
 }
 
+/// The error of a reference quadrature stopped by its thread's deadline
+/// ([`crate::deadline::scoped`]).
+pub const STOPPED: &str = "stopped at the time limit";
+
 /// A reference value: the integral, its estimated absolute error and the evaluations spent.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reference {
@@ -185,6 +189,7 @@ pub fn polygon_integral(
         }
         (lo, hi, t)
     };
+    let stopped = std::cell::Cell::new(false);
     let run = |abs: f64| -> Reference {
         let total_phi = cuts[cuts.len() - 1] - cuts[0];
         // inner tolerance per unit of φ, its error is noise to the outer rule
@@ -216,6 +221,11 @@ pub fn polygon_integral(
                         return [0.0];
                     }
                     let (u0, u1) = ((lo / scale).asinh(), (hi / scale).asinh());
+                    // the caller's time limit (deadline::scoped), between inner integrals
+                    if stopped.get() || crate::deadline::current_passed() {
+                        stopped.set(true);
+                        return [0.0];
+                    }
                     let inner = integrate(
                         |u: f64| {
                             let rho = scale * u.sinh();
@@ -259,6 +269,9 @@ pub fn polygon_integral(
     let target = (rel_tol * coarse.value.abs()).max(f64::MIN_POSITIVE);
     let mut fine = run(target);
     fine.evals += coarse.evals;
+    if stopped.get() {
+        return Err(LtcError::Domain(STOPPED.into()));
+    }
     Ok(fine)
 }
 
@@ -303,5 +316,28 @@ mod tests {
             [0.0, 0.0, 1.0],
         );
         assert_eq!(cl.len(), 4);
+    }
+
+    /// A deadline that has passed stops the quadrature between inner integrals: an error,
+    /// not a value computed to the end.
+    #[test]
+    fn a_passed_deadline_stops_the_quadrature() {
+        let g = |w: [f64; 3]| w[2].max(0.0);
+        let quad = [
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ];
+        let ok = polygon_integral(&g, &quad, [0.0, 0.0, 1.0], 0.5, 1e-9).unwrap();
+        assert!(ok.value > 0.0);
+        let past = crate::deadline::Deadline::after(0.0);
+        let e = crate::deadline::scoped(past, || {
+            polygon_integral(&g, &quad, [0.0, 0.0, 1.0], 0.5, 1e-9)
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains(STOPPED), "{e}");
+        // and the scope ends with the call
+        assert!(polygon_integral(&g, &quad, [0.0, 0.0, 1.0], 0.5, 1e-9).is_ok());
     }
 }

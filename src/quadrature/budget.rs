@@ -61,10 +61,13 @@ pub(crate) fn charge(n: u64) {
     });
 }
 
-/// Whether the innermost scope's budget is spent.
+/// Whether the innermost scope's budget is spent, or the thread's time limit
+/// ([`crate::deadline::scoped`]) has passed: either way every rule stops refining. (A run
+/// stopped by its time limit is an error and writes nothing, so where that happens never
+/// reaches an output.)
 #[inline]
 pub(crate) fn exhausted() -> bool {
-    LEFT.with(Cell::get) == 0
+    LEFT.with(Cell::get) == 0 || crate::deadline::current_passed()
 }
 
 #[cfg(test)]
