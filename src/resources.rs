@@ -539,7 +539,7 @@ fn address_space_limit() -> Option<(u64, &'static str)> {
             };
             // SAFETY: getrlimit writes the struct we own
             let ok = unsafe { libc::getrlimit(r, &mut l) } == 0;
-            (ok && l.rlim_cur != libc::RLIM_INFINITY).then_some(l.rlim_cur as u64)
+            (ok && l.rlim_cur != libc::RLIM_INFINITY).then_some(l.rlim_cur)
         };
         let as_ = get(libc::RLIMIT_AS).map(|v| (v, "RLIMIT_AS"));
         let data = get(libc::RLIMIT_DATA).map(|v| (v, "RLIMIT_DATA"));
