@@ -88,6 +88,20 @@ pub fn inputs(table: &PresetTable) -> Value {
 /// The `channels` sidecar field: per stored channel its index, name and meaning; with the
 /// preset's `channels` set, also what it stores (the preset's entry), the computed channel it
 /// is made from and the transform.
+/// The sidecar's `axes` and `channels` sections as this version writes them for `table`:
+/// functions of the table alone (coordinates and α recomputed from each axis' formula), so a
+/// reader can check a sidecar against itself.
+pub fn axes_and_channels(table: &PresetTable) -> (Value, Value) {
+    let lut = Lut {
+        axes: table.stored_axes(),
+        channels: table.stored_channels(),
+        data: Vec::new(),
+        error_estimate: Vec::new(),
+        evaluations: 0,
+    };
+    (json!(axes_json(&lut.axes)), channels_json(table, &lut))
+}
+
 fn channels_json(table: &PresetTable, lut: &Lut) -> Value {
     let Some(stored) = &table.channels else {
         return json!(lut

@@ -1186,9 +1186,18 @@ fn table_spec(
     if kind == TableKind::Vgroove {
         let given: Vec<&str> = [
             ("ndf", model.ndf.is_some()),
-            ("fresnel", model.fresnel.is_some()),
-            ("diffuse", model.diffuse.is_some()),
-            ("diffuse_model", model.diffuse_model.is_some()),
+            // (the values that change nothing, as a sidecar writes them, are accepted)
+            (
+                "fresnel",
+                model.fresnel.is_some_and(|f| !matches!(f, Fresnel::None)),
+            ),
+            ("diffuse", model.diffuse.is_some_and(|w| w != 0.0)),
+            (
+                "diffuse_model",
+                model
+                    .diffuse_model
+                    .is_some_and(|m| m != crate::model::DiffuseModel::Lambert),
+            ),
             ("classic", model.classic.is_some()),
             (
                 "masking",

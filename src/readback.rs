@@ -136,6 +136,18 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         if !measured {
             let table = table_from_sidecar(&v)
                 .map_err(|e| ReadError::Input(format!("{}: {e}", sp.display())))?;
+            // the sidecar agrees with itself: its axes (coordinates, α) and channels are what
+            // this version writes for the table it describes
+            let (axes, channels) = meta::axes_and_channels(&table);
+            for (key, want) in [("axes", axes), ("channels", channels)] {
+                let have = v.get(key).cloned().unwrap_or(Value::Null);
+                if let Some(at) = json_difference(&have, &want, key) {
+                    return Err(ReadError::Input(format!(
+                        "{}: {at} disagrees with the table the sidecar describes (recomputed from its axes' formulas and channels): the sidecar was edited",
+                        sp.display()
+                    )));
+                }
+            }
             rb.hash_matches = Some(
                 v.get("input_hash").and_then(Value::as_str) == Some(&meta::input_hash(&table)),
             );
@@ -199,6 +211,26 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
                 )));
             }
         }
+        // the header carries the input hash (EXR attribute, PNG text chunk) where the format
+        // has a place for it: a sealed sidecar next to a texture without it is a mismatch
+        if rb.table.is_some()
+            && matches!(ext.as_str(), "exr" | "png")
+            && !facts.iter().any(|(k, _)| k == "input_hash")
+        {
+            return Err(ReadError::Input(format!(
+                "{}: its header has no input hash ({}), which every {} brdfbake writes holds and its sidecar's must equal",
+                t.display(),
+                if ext == "exr" { "attribute brdfbake:input_hash" } else { "text chunk input_hash" },
+                if ext == "exr" { "EXR" } else { "png-data file" }
+            )));
+        }
+        // a KTX2 or DDS file is exactly what this version writes for the table it holds: any
+        // header, descriptor, key/value, index or trailing byte that differs is named
+        if let Some(table) = &rb.table {
+            if matches!(ext.as_str(), "ktx2" | "dds") {
+                structure_check(&t, &ext, &bytes, table, rb.sidecar.as_ref(), &lut)?;
+            }
+        }
         rb.lut = Some(lut);
         rb.file_facts = facts;
         rb.texture_format = Some(match ext.as_str() {
@@ -210,6 +242,207 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         rb.texture = Some(t);
     }
     Ok(rb)
+}
+
+/// Compares a KTX2 or DDS file with the bytes this version writes for the table it holds
+/// (its texels, as read, encoded again with the sidecar's storage, 3D layout and KTX2
+/// supercompression). A KTX2 file another brdfbake version wrote (its `KTXwriter`) is left to
+/// the checks of [`read_ktx2`].
+fn structure_check(
+    path: &Path,
+    ext: &str,
+    bytes: &[u8],
+    table: &PresetTable,
+    sidecar: Option<&Value>,
+    lut: &Lut,
+) -> Result<(), ReadError> {
+    use crate::encode::Encoder;
+    let array_3d = table.layout_3d == crate::preset::Layout3d::Array;
+    let name = table.spec.name.clone();
+    let want = if ext == "dds" {
+        crate::encode::dds::DdsEncoder {
+            storage: table.spec.storage,
+            table_name: name,
+            array_3d,
+        }
+        .encode(lut, &[])
+    } else {
+        let writer = ::ktx2::Reader::new(bytes)
+            .ok()
+            .and_then(|r| r.writer().map(|w| w.trim_end_matches('\0').to_string()));
+        if writer.as_deref() != Some(crate::encode::ktx2::WRITER) {
+            return Ok(());
+        }
+        let zstd = sidecar
+            .and_then(|v| v.pointer("/storage/ktx2/supercompression"))
+            .and_then(Value::as_str)
+            == Some("zstd");
+        crate::encode::ktx2::Ktx2Encoder {
+            storage: table.spec.storage,
+            table_name: name,
+            array_3d,
+            supercompression: if zstd {
+                crate::encode::ktx2::Supercompression::Zstd
+            } else {
+                crate::encode::ktx2::Supercompression::None
+            },
+        }
+        .encode(lut, &[])
+    };
+    let want =
+        want.map_err(|e| mismatch(path, format!("its texels cannot be written back: {e}")))?;
+    if want == bytes {
+        return Ok(());
+    }
+    let at = want
+        .iter()
+        .zip(bytes)
+        .position(|(a, b)| a != b)
+        .unwrap_or(want.len().min(bytes.len()));
+    let field = if ext == "dds" {
+        dds_field(at)
+    } else {
+        ktx2_field(&want, at)
+    };
+    Err(mismatch(
+        path,
+        if bytes.len() != want.len() && at == want.len().min(bytes.len()) {
+            format!(
+                "it is {} bytes, the table it holds is written in {} ({})",
+                bytes.len(),
+                want.len(),
+                if bytes.len() > want.len() {
+                    "bytes appended"
+                } else {
+                    "truncated"
+                }
+            )
+        } else {
+            format!(
+                "byte {at} ({field}) differs from what brdfbake writes for this table and its sidecar"
+            )
+        },
+    ))
+}
+
+/// The KTX2 field at byte `at` of a file laid out as `bytes` (this version's layout).
+fn ktx2_field(bytes: &[u8], at: usize) -> String {
+    const HEADER: [(usize, &str); 9] = [
+        (12, "vkFormat"),
+        (16, "typeSize"),
+        (20, "pixelWidth"),
+        (24, "pixelHeight"),
+        (28, "pixelDepth"),
+        (32, "layerCount"),
+        (36, "faceCount"),
+        (40, "levelCount"),
+        (44, "supercompressionScheme"),
+    ];
+    if at < 12 {
+        return "the identifier".into();
+    }
+    if let Some((_, n)) = HEADER.iter().find(|(o, _)| at >= *o && at < o + 4) {
+        return format!("header field {n}");
+    }
+    if at < 80 {
+        return "the index (DFD, key/value or supercompression data offsets and lengths)".into();
+    }
+    if at < 104 {
+        return "the level index".into();
+    }
+    let u = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().expect("4 bytes")) as usize;
+    let (dfd, kvd) = ((u(48), u(52)), (u(56), u(60)));
+    if at >= dfd.0 && at < dfd.0 + dfd.1 {
+        return "the Data Format Descriptor".into();
+    }
+    if at >= kvd.0 && at < kvd.0 + kvd.1 {
+        return "the key/value data (KTXorientation, KTXwriter)".into();
+    }
+    "the level's texels or its padding".into()
+}
+
+/// The DDS field at byte `at` (the layout [`crate::encode::dds`] writes).
+fn dds_field(at: usize) -> String {
+    const FIELDS: [&str; 36] = [
+        "dwSize",
+        "dwFlags",
+        "dwHeight",
+        "dwWidth",
+        "dwPitchOrLinearSize",
+        "dwDepth",
+        "dwMipMapCount",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "dwReserved1",
+        "ddspf.dwSize",
+        "ddspf.dwFlags",
+        "ddspf.dwFourCC",
+        "ddspf.dwRGBBitCount",
+        "ddspf.dwRBitMask",
+        "ddspf.dwGBitMask",
+        "ddspf.dwBBitMask",
+        "ddspf.dwABitMask",
+        "dwCaps",
+        "dwCaps2",
+        "dwCaps3",
+        "dwCaps4",
+        "dwReserved2",
+        "dxgiFormat",
+        "resourceDimension",
+        "miscFlag",
+        "arraySize",
+        "miscFlags2",
+    ];
+    if at < 4 {
+        return "the magic".into();
+    }
+    FIELDS
+        .get((at - 4) / 4)
+        .map_or("the texels".into(), |f| format!("header field {f}"))
+}
+
+/// The first place where `have` differs from `want`, as a path (`axes[1].coordinates[3]`);
+/// numbers equal when they print the same (a JSON round trip keeps f64s exactly).
+fn json_difference(have: &Value, want: &Value, at: &str) -> Option<String> {
+    match (have, want) {
+        (Value::Object(a), Value::Object(b)) => {
+            for (k, w) in b {
+                if let Some(d) =
+                    json_difference(a.get(k).unwrap_or(&Value::Null), w, &format!("{at}.{k}"))
+                {
+                    return Some(d);
+                }
+            }
+            a.keys()
+                .find(|k| !b.contains_key(*k))
+                .map(|k| format!("{at}.{k} (not a field this version writes)"))
+        }
+        (Value::Array(a), Value::Array(b)) => {
+            if a.len() != b.len() {
+                return Some(format!(
+                    "{at} ({} entries, the table has {})",
+                    a.len(),
+                    b.len()
+                ));
+            }
+            a.iter()
+                .zip(b)
+                .enumerate()
+                .find_map(|(i, (x, y))| json_difference(x, y, &format!("{at}[{i}]")))
+        }
+        (Value::Number(a), Value::Number(b)) => {
+            (a.as_f64() != b.as_f64()).then(|| format!("{at} ({a}, the table's {b})"))
+        }
+        (a, b) => (a != b).then(|| format!("{at} ({a}, the table's {b})")),
+    }
 }
 
 /// The sidecar at `j` beside a texture: `None` when nothing is there; an error when something

@@ -260,3 +260,115 @@ fn control_characters_in_messages_are_escaped() {
     );
     assert!(err.contains("\\u{1b}"), "{err}");
 }
+
+/// Writes `bytes` as `bad/<name>` beside a copy of `side` sealed over it (the digests
+/// recomputed, as someone who edits a file and its sidecar together would).
+fn sealed_copy(d: &Path, name: &str, bytes: &[u8], side: &serde_json::Value) {
+    fs::create_dir_all(d.join("bad")).unwrap();
+    fs::write(d.join("bad").join(name), bytes).unwrap();
+    let json = name.rsplit_once('.').unwrap().0.to_string() + ".json";
+    fs::write(
+        d.join("bad").join(json),
+        brdfbake::digest::seal(side.clone(), &[(name, bytes)]),
+    )
+    .unwrap();
+}
+
+/// A file whose structure contradicts its sidecar is refused whatever its digests say: every
+/// 4-byte field of a KTX2 header and level index, bytes of its DFD and key/value data
+/// (KTXorientation), bytes appended; every DDS header field; an EXR without its input-hash
+/// attribute; a sidecar whose coordinates, α or channel names were edited. Each by `inspect`
+/// and `verify`, exit 2.
+#[test]
+fn structure_that_contradicts_the_sidecar_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = run(
+        d,
+        &[
+            "bake",
+            "karis-envbrdf",
+            "--format",
+            "ktx2,dds,exr",
+            "--out",
+            "out",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let base = d.join("out/karis-envbrdf");
+    let side: serde_json::Value =
+        serde_json::from_slice(&fs::read(base.join("envbrdf.json")).unwrap()).unwrap();
+    let refused = |name: &str, what: &str| {
+        for cmd in ["inspect", "verify"] {
+            let o = run(d, &[cmd, &format!("bad/{name}")]);
+            assert_eq!(
+                o.status.code(),
+                Some(INPUT),
+                "{cmd} {what}: {}",
+                cli::stderr(&o)
+            );
+        }
+    };
+    // the unedited copy is accepted
+    let ktx2 = fs::read(base.join("envbrdf.ktx2")).unwrap();
+    sealed_copy(d, "envbrdf.ktx2", &ktx2, &side);
+    let o = run(d, &["inspect", "bad/envbrdf.ktx2"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+
+    let u = |b: &[u8], o: usize| u32::from_le_bytes(b[o..o + 4].try_into().unwrap()) as usize;
+    let (dfd, kvd) = (u(&ktx2, 48), u(&ktx2, 56));
+    let kvd_len = u(&ktx2, 60);
+    let mut offsets: Vec<usize> = (12..104).step_by(4).collect();
+    offsets.extend([dfd + 4, dfd + 12, dfd + 20, kvd + 6, kvd + kvd_len - 2]);
+    for at in offsets {
+        let mut b = ktx2.clone();
+        b[at] ^= 0x01;
+        sealed_copy(d, "envbrdf.ktx2", &b, &side);
+        refused("envbrdf.ktx2", &format!("KTX2 byte {at}"));
+    }
+    let mut longer = ktx2.clone();
+    longer.extend(std::iter::repeat_n(0u8, 100));
+    sealed_copy(d, "envbrdf.ktx2", &longer, &side);
+    refused("envbrdf.ktx2", "KTX2 with bytes appended");
+
+    let dds = fs::read(base.join("envbrdf.dds")).unwrap();
+    for at in (4..148).step_by(4) {
+        let mut b = dds.clone();
+        b[at] ^= 0x01;
+        sealed_copy(d, "envbrdf.dds", &b, &side);
+        refused("envbrdf.dds", &format!("DDS byte {at}"));
+    }
+
+    // an EXR of the same texels without the input-hash attribute
+    let exr = fs::read(base.join("envbrdf.exr")).unwrap();
+    let (w, h, planes, _) = brdfbake::encode::decode_exr(&exr).unwrap();
+    let rb = brdfbake::readback::read(&base.join("envbrdf.exr")).unwrap();
+    let lut = rb.lut.unwrap();
+    assert_eq!(
+        (w, h, planes.len()),
+        (lut.dim(0), lut.dim(1), lut.channels.len())
+    );
+    use brdfbake::encode::Encoder;
+    let bare = brdfbake::encode::ExrEncoder {
+        storage: rb.table.unwrap().spec.storage,
+        table_name: "envbrdf".into(),
+    }
+    .encode(&lut, &[])
+    .unwrap();
+    sealed_copy(d, "envbrdf.exr", &bare, &side);
+    refused("envbrdf.exr", "EXR without brdfbake:input_hash");
+
+    // sidecars edited where they describe the table: a coordinate, an alpha, a channel name
+    for (pointer, value) in [
+        ("/axes/0/coordinates/3", serde_json::json!(0.5)),
+        ("/axes/1/alpha/5", serde_json::json!(0.25)),
+        ("/channels/0/name", serde_json::json!("X")),
+    ] {
+        let mut s = side.clone();
+        *s.pointer_mut(pointer)
+            .unwrap_or_else(|| panic!("{pointer}")) = value;
+        sealed_copy(d, "envbrdf.ktx2", &ktx2, &s);
+        refused("envbrdf.ktx2", pointer);
+    }
+}
