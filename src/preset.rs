@@ -713,6 +713,11 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         path,
         msg,
     })?;
+    check_no_null(&value, "").map_err(|(path, msg)| PresetError::Field {
+        source_name: source_name.into(),
+        path,
+        msg,
+    })?;
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: RawPreset = serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -1057,11 +1062,32 @@ pub enum LoadError {
 }
 
 /// Every place of the schema that holds an object must hold one (not an array).
+/// One rule for every field: `null` is never a value in a preset (an optional field is left
+/// out for its default; `null` used to mean that for some fields and be refused for others).
+fn check_no_null(v: &serde_json::Value, path: &str) -> Result<(), (String, String)> {
+    use serde_json::Value;
+    match v {
+        Value::Null => Err((
+            if path.is_empty() { "(top level)".into() } else { path.to_string() },
+            "is null: a preset takes no null anywhere; leave an optional field out for its default (docs/presets.md)".into(),
+        )),
+        Value::Object(m) => m.iter().try_for_each(|(k, x)| {
+            check_no_null(x, &if path.is_empty() { k.clone() } else { format!("{path}.{k}") })
+        }),
+        Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .try_for_each(|(i, x)| check_no_null(x, &format!("{path}[{i}]"))),
+        _ => Ok(()),
+    }
+}
+
 fn check_objects(v: &serde_json::Value) -> Result<(), (String, String)> {
     use serde_json::Value;
     let need = |v: &Value, path: &str| -> Result<(), (String, String)> {
         match v {
             Value::Object(_) => Ok(()),
+            Value::Null => check_no_null(v, path),
             other => Err((
                 path.to_string(),
                 format!("must be a JSON object {{...}}, got {}", kind_of(other)),

@@ -372,3 +372,57 @@ fn structure_that_contradicts_the_sidecar_is_refused() {
         refused("envbrdf.ktx2", pointer);
     }
 }
+
+/// One rule for `null`: refused wherever it stands, naming the place, for required and
+/// optional fields alike.
+#[test]
+fn null_is_refused_everywhere() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base = r#"{"schema": "brdfbake.preset/1", "tables": [{"name": "e", "kind": "albedo", TABLE
+      "model": {"ndf": "ggx", "masking": "smith-height-correlated" MODEL},
+      "axes": {"cos_theta_v": {"size": 8 AXIS}, "roughness": {"size": 8, "quantity": "perceptual"}}}]}"#;
+    let fill = |t: &str, m: &str, a: &str| {
+        base.replace("TABLE", t)
+            .replace("MODEL", m)
+            .replace("AXIS", a)
+    };
+    let mut cases = Vec::new();
+    for f in [
+        "storage",
+        "tolerance",
+        "formats",
+        "scale",
+        "channels",
+        "axis_order",
+        "accept_error_estimate",
+        "engine",
+        "ltc",
+        "shipped",
+        "layout_3d",
+        "cloth",
+    ] {
+        cases.push((
+            fill(&format!("\"{f}\": null,"), "", ""),
+            format!("tables[0].{f}"),
+        ));
+    }
+    for f in ["fresnel", "diffuse", "diffuse_model", "classic"] {
+        cases.push((
+            fill("", &format!(", \"{f}\": null"), ""),
+            format!("tables[0].model.{f}"),
+        ));
+    }
+    for f in ["range", "convention", "warp", "clamp", "quantity"] {
+        cases.push((
+            fill("", "", &format!(", \"{f}\": null")),
+            format!("tables[0].axes.cos_theta_v.{f}"),
+        ));
+    }
+    for (text, path) in cases {
+        fs::write(d.join("n.json"), text).unwrap();
+        let o = run(d, &["bake", "n.json", "--out", "out"]);
+        assert_fails(&o, INPUT, &[&path, "is null"], &path);
+    }
+    assert!(!d.join("out").exists());
+}

@@ -213,13 +213,16 @@ impl TableSpec {
                     };
                     if lo < 0.0 || hi > max {
                         return Err(format!(
-                            "{f}.range must lie within [0, {}] ({} roughness{}), got [{}, {}]",
+                            "{f}.range must lie within [0, {}] ({} roughness{}{}), got [{}, {}]",
                             if max.is_finite() {
                                 "1".to_string()
                             } else {
                                 "inf".to_string()
                             },
                             q.name(),
+                            self.model
+                                .ndf
+                                .map_or(String::new(), |n| format!(" of the {} NDF", n.name())),
                             if max.is_finite() {
                                 ": alpha from 0 to 1, the domain whose tables are verified"
                             } else {
