@@ -17,6 +17,7 @@
 mod cli;
 #[path = "common/luts.rs"]
 mod luts;
+use luts::unorm_code;
 
 use brdfbake::encode::png_data::PngData;
 use brdfbake::encode::Encoder;
@@ -24,20 +25,6 @@ use brdfbake::table::Storage;
 use serde_json::Value;
 use std::fs;
 use std::path::Path;
-
-/// The UNORM code of `v` computed here, independently of the encoders: the nearest integer
-/// to v·max, a tie going to the even one.
-fn unorm_code(v: f32, max: u32) -> u16 {
-    let x = v as f64 * max as f64;
-    let f = x.floor();
-    let c = if x - f > 0.5 || (x - f == 0.5 && f % 2.0 == 1.0) {
-        f + 1.0
-    } else {
-        f
-    };
-    assert!((0.0..=max as f64).contains(&c), "{v} is not storable");
-    c as u16
-}
 
 /// A decoded PNG: (colour type, bit depth, width, height, samples as u16, chunk types).
 type Decoded = (
