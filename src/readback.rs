@@ -1027,11 +1027,7 @@ fn read_dds(
             path.display()
         ))
     })?;
-    let (components, storage) = [1usize, 2, 4]
-        .into_iter()
-        .flat_map(|c| crate::table::Storage::ALL.into_iter().map(move |s| (c, s)))
-        .find(|&(c, s)| crate::encode::dds::dxgi_format(c, s).0 == im.dxgi_format)
-        .expect("dds::read accepts only the formats brdfbake writes");
+    let (components, storage) = (im.components, im.storage);
     let format_name = crate::encode::dds::dxgi_format(components, storage).1;
     if let Some(t) = table {
         if t.spec.storage != storage {

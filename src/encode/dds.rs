@@ -201,6 +201,9 @@ pub struct DdsImage {
     pub array_size: u32,
     pub volume: bool,
     pub dxgi_format: u32,
+    /// The texture components per texel (1, 2 or 4) and their storage that `dxgi_format` is.
+    pub components: usize,
+    pub storage: Storage,
     /// The texel bytes after the headers.
     pub data_offset: usize,
 }
@@ -263,12 +266,12 @@ pub fn read(bytes: &[u8]) -> Result<DdsImage, String> {
             "a zero size (width {width}, height {height}, depth {depth}, arraySize {array_size})"
         ));
     }
-    let components = [1usize, 2, 4]
+    let (components, storage) = [1usize, 2, 4]
         .into_iter()
         .flat_map(|c| Storage::ALL.into_iter().map(move |s| (c, s)))
         .find(|&(c, s)| dxgi_format(c, s).0 == dxgi)
         .ok_or_else(|| format!("dxgiFormat {dxgi} is not one brdfbake writes"))?;
-    let texel_bytes = components.0 * components.1.bytes();
+    let texel_bytes = components * storage.bytes();
     field(
         "dwPitchOrLinearSize",
         pitch,
@@ -296,6 +299,8 @@ pub fn read(bytes: &[u8]) -> Result<DdsImage, String> {
         array_size,
         volume,
         dxgi_format: dxgi,
+        components,
+        storage,
         data_offset,
     })
 }
