@@ -228,7 +228,11 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         // header, descriptor, key/value, index or trailing byte that differs is named
         if let Some(table) = &rb.table {
             if matches!(ext.as_str(), "ktx2" | "dds") {
-                structure_check(&t, &ext, &bytes, table, rb.sidecar.as_ref(), &lut)?;
+                let writer = facts
+                    .iter()
+                    .find(|(k, _)| k == "writer")
+                    .map(|(_, w)| w.as_str());
+                structure_check(&t, &ext, &bytes, table, rb.sidecar.as_ref(), &lut, writer)?;
             }
         }
         rb.lut = Some(lut);
@@ -246,8 +250,8 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
 
 /// Compares a KTX2 or DDS file with the bytes this version writes for the table it holds
 /// (its texels, as read, encoded again with the sidecar's storage, 3D layout and KTX2
-/// supercompression). A KTX2 file another brdfbake version wrote (its `KTXwriter`) is left to
-/// the checks of [`read_ktx2`].
+/// supercompression). A KTX2 file another brdfbake version wrote (its `KTXwriter`, the
+/// `writer` fact of [`read_ktx2`]) is left to the checks of [`read_ktx2`].
 fn structure_check(
     path: &Path,
     ext: &str,
@@ -255,6 +259,7 @@ fn structure_check(
     table: &PresetTable,
     sidecar: Option<&Value>,
     lut: &Lut,
+    writer: Option<&str>,
 ) -> Result<(), ReadError> {
     use crate::encode::Encoder;
     let array_3d = table.layout_3d == crate::preset::Layout3d::Array;
@@ -267,10 +272,8 @@ fn structure_check(
         }
         .encode(lut, &[])
     } else {
-        let writer = ::ktx2::Reader::new(bytes)
-            .ok()
-            .and_then(|r| r.writer().map(|w| w.trim_end_matches('\0').to_string()));
-        if writer.as_deref() != Some(crate::encode::ktx2::WRITER) {
+        // (the KTXwriter read_ktx2 found)
+        if writer != Some(crate::encode::ktx2::WRITER) {
             return Ok(());
         }
         let zstd = sidecar
