@@ -64,6 +64,10 @@ pub enum Warp {
     Acos,
     /// `p = x²`, `x = √p`; p in [0, 1] (cosine and Fresnel axes: EEVEE's η² axis).
     Square,
+    /// `p = 1 − x`, `x = 1 − p`; p in [0, 1] (any axis whose coordinate lies in [0, 1]): the
+    /// axis runs backwards, its first texel at the largest coordinate — Godot's DFG table
+    /// puts perceptual roughness 1 in its first row and samples it at `1 − roughness`.
+    OneMinus,
     /// EEVEE's critical-angle remap of the view cosine `x = μ` of a table whose relative index
     /// η < 1 has the critical cosine `c = √(1 − η²)` (0 for η ≥ 1; η is the texel's own, from
     /// the table's fresnel axis): `p = μ/(2c)` for μ ≤ c, `p = 1/2 + (μ − c)/(2(1 − c))`
@@ -74,12 +78,13 @@ pub enum Warp {
 }
 
 impl Warp {
-    pub const ALL: [Warp; 6] = [
+    pub const ALL: [Warp; 7] = [
         Warp::Linear,
         Warp::SqrtOneMinus,
         Warp::Sqrt,
         Warp::Acos,
         Warp::Square,
+        Warp::OneMinus,
         Warp::CriticalAngle,
     ];
 
@@ -90,6 +95,7 @@ impl Warp {
             Warp::Sqrt => "sqrt",
             Warp::Acos => "acos",
             Warp::Square => "square",
+            Warp::OneMinus => "one-minus",
             Warp::CriticalAngle => "critical-angle",
         }
     }
@@ -102,6 +108,7 @@ impl Warp {
             Warp::Sqrt => "p = sqrt(x)",
             Warp::Acos => "p = acos(x) (radians)",
             Warp::Square => "p = x^2",
+            Warp::OneMinus => "p = 1 - x",
             Warp::CriticalAngle => {
                 "p = x/(2c) for x <= c, 0.5 + (x - c)/(2(1 - c)) for x > c, with c = sqrt(1 - eta^2) (0 for eta >= 1) of the texel's relative index eta (the fresnel axis)"
             }
@@ -116,6 +123,7 @@ impl Warp {
             Warp::Sqrt => "x = p^2",
             Warp::Acos => "x = cos(p)",
             Warp::Square => "x = sqrt(p)",
+            Warp::OneMinus => "x = 1 - p",
             Warp::CriticalAngle => {
                 "x = c + t*c for t <= 0, c + t*(1 - c) for t > 0, with t = 2p - 1 and c = sqrt(1 - eta^2) (0 for eta >= 1)"
             }
@@ -133,9 +141,11 @@ impl Warp {
     pub fn parameter_domain(self) -> Option<[f64; 2]> {
         match self {
             Warp::Linear => None,
-            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Square | Warp::CriticalAngle => {
-                Some([0.0, 1.0])
-            }
+            Warp::SqrtOneMinus
+            | Warp::Sqrt
+            | Warp::Square
+            | Warp::OneMinus
+            | Warp::CriticalAngle => Some([0.0, 1.0]),
             Warp::Acos => Some([0.0, std::f64::consts::FRAC_PI_2]),
         }
     }
@@ -145,9 +155,12 @@ impl Warp {
     pub fn coordinate_domain(self) -> Option<[f64; 2]> {
         match self {
             Warp::Linear => None,
-            Warp::SqrtOneMinus | Warp::Sqrt | Warp::Acos | Warp::Square | Warp::CriticalAngle => {
-                Some([0.0, 1.0])
-            }
+            Warp::SqrtOneMinus
+            | Warp::Sqrt
+            | Warp::Acos
+            | Warp::Square
+            | Warp::OneMinus
+            | Warp::CriticalAngle => Some([0.0, 1.0]),
         }
     }
 
@@ -167,6 +180,7 @@ impl Warp {
         match self {
             Warp::Linear => x,
             Warp::SqrtOneMinus => (1.0 - x).sqrt(),
+            Warp::OneMinus => 1.0 - x,
             Warp::Sqrt => x.sqrt(),
             Warp::Acos => x.acos(),
             Warp::Square => x * x,
@@ -193,6 +207,7 @@ impl Warp {
         match self {
             Warp::Linear => p,
             Warp::SqrtOneMinus => 1.0 - p * p,
+            Warp::OneMinus => 1.0 - p,
             Warp::Sqrt => p * p,
             Warp::Acos => p.cos(),
             Warp::Square => p.max(0.0).sqrt(),

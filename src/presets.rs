@@ -111,6 +111,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/eevee-btdf-ggx.json"),
     ),
     (
+        "godot-dfg",
+        include_str!("../presets/engines/godot-dfg.json"),
+    ),
+    (
         "gltf-lut-charlie",
         include_str!("../presets/engines/gltf-lut-charlie.json"),
     ),

@@ -19,12 +19,14 @@
 
 #[path = "common/docs.rs"]
 mod docs;
+#[path = "common/hammersley.rs"]
+mod hammersley;
+use hammersley::hammersley;
 
 use brdfbake::lut::Lut;
 use brdfbake::numfmt::fig;
 use brdfbake::preset::PresetTable;
 use rayon::prelude::*;
-use std::f64::consts::PI;
 
 const REQ: f64 = 1e-6;
 const F32_REL: f64 = 1.0 / (1u64 << 24) as f64;
@@ -41,18 +43,6 @@ fn engine_table(name: &str, edit: &dyn Fn(&str) -> String) -> PresetTable {
 /// The table's computed values (A, B), before storage rounding (f32).
 fn bake(t: &PresetTable) -> Lut {
     brdfbake::table::bake(&t.spec).unwrap()
-}
-
-/// `Hammersley(i, n)`: ξ = (i/n, the base-2 radical inverse of i, as `reversebits(i)·2⁻³²`),
-/// kept as (cos 2πξ₁, sin 2πξ₁, ξ₂).
-fn hammersley(n: usize) -> Vec<[f64; 3]> {
-    (0..n)
-        .map(|i| {
-            let r = (i as u32).reverse_bits() as f64 / 4_294_967_296.0;
-            let phi = 2.0 * PI * i as f64 / n as f64;
-            [phi.cos(), phi.sin(), r]
-        })
-        .collect()
 }
 
 /// `IntegrateBRDF(Roughness, NoV)` with the point set `xi` (module doc).

@@ -437,6 +437,7 @@ impl Gen<'_> {
                     Warp::Sqrt => format!("sqrt({xc})"),
                     Warp::Acos => format!("acos({xc})"),
                     Warp::Square => format!("{xc} * {xc}"),
+                    Warp::OneMinus => format!("1.0 - {xc}"),
                     Warp::CriticalAngle => {
                         s.push_str(&self.critical_cosine(k));
                         s.push_str(&self.local(&format!("x{k}_"), &xc));

@@ -50,14 +50,18 @@ impl TableSpec {
                 return Err(format!("{f}: the endpoints convention needs size >= 2"));
             }
             // warps apply to cosines and to Fresnel coordinates (Cycles' sqrt of
-            // (eta - 1)/(eta + 1)); every one is strictly monotone on its coordinate domain
+            // (eta - 1)/(eta + 1)), and the reversal one-minus also to roughness (Godot's DFG
+            // rows run from roughness 1 down); every one is strictly monotone on its
+            // coordinate domain
             let warp_ok = matches!(
                 (ax.warp, ax.quantity),
-                (Warp::Linear, _) | (_, Quantity::Cosine | Quantity::Fresnel(_))
+                (Warp::Linear, _)
+                    | (_, Quantity::Cosine | Quantity::Fresnel(_))
+                    | (Warp::OneMinus, Quantity::Roughness(_))
             );
             if !warp_ok {
                 return Err(format!(
-                    "{f}.warp {:?} applies to cosine and fresnel axes only; this axis is linear in its quantity",
+                    "{f}.warp {:?} applies to cosine and fresnel axes only (a roughness axis takes \"one-minus\" alone); this axis is linear in its quantity",
                     ax.warp.name()
                 ));
             }
