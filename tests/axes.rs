@@ -70,6 +70,7 @@ fn expected_coordinate(warp: Warp, p: f64) -> f64 {
         Warp::Sqrt => p * p,
         Warp::Acos => p.cos(),
         Warp::Square => p.sqrt(),
+        Warp::OneMinus => 1.0 - p,
         Warp::CriticalAngle => unreachable!("not on a g1 table"),
     }
 }
@@ -82,6 +83,7 @@ fn texels_sit_at_the_warped_coordinates() {
         (Warp::Sqrt, [0.0, 1.0]),
         (Warp::Acos, [0.0, FRAC_PI_2]),
         (Warp::Square, [0.0, 1.0]),
+        (Warp::OneMinus, [0.0, 1.0]),
     ] {
         for conv in [Convention::Centers, Convention::Endpoints] {
             let n = 9;
@@ -129,6 +131,40 @@ fn texels_sit_at_the_warped_coordinates() {
             }
         }
     }
+}
+
+/// A roughness axis takes the reversal `one-minus` (Godot's DFG rows run from roughness 1
+/// down) and no other warp: its texels hold G1 at α = (1 − p)² and lookups find them.
+#[test]
+fn a_roughness_axis_runs_backwards_with_one_minus() {
+    let mut spec = g1_spec(warped(Warp::Linear, 5, [0.0, 1.0], Convention::Centers));
+    spec.axes[1] = Axis {
+        warp: Warp::OneMinus,
+        ..Axis::new(
+            "roughness",
+            Quantity::Roughness(RoughnessQuantity::Perceptual),
+            4,
+            [0.0, 1.0],
+            Convention::Centers,
+        )
+    };
+    let lut = bake(&spec).unwrap();
+    for j in 0..4 {
+        let r = 1.0 - (j as f64 + 0.5) / 4.0;
+        assert!((spec.axes[1].alpha(j).unwrap() - r * r).abs() < 1e-15);
+        for i in 0..5 {
+            let mu = spec.axes[0].coord(i);
+            let got = lut.texel([i, j, 0], 0) as f64;
+            assert!(
+                (got - g1_ggx(mu, r * r)).abs() <= 1e-7,
+                "texel [{i}, {j}]: {got}"
+            );
+            assert!((lut.lookup(&[mu, r])[0] - got).abs() <= 1e-6);
+        }
+    }
+    spec.axes[1].warp = Warp::Sqrt;
+    let e = spec.validate().unwrap_err();
+    assert!(e.contains("one-minus"), "{e}");
 }
 
 #[test]
