@@ -44,10 +44,17 @@ pub enum Format {
     Hlsl,
     /// WGSL lookup function.
     Wgsl,
+    /// The texels as a NumPy `.npy` array ([`crate::encode::npy`]).
+    Npy,
+    /// The texels and header attributes as a NumPy `.npz` archive ([`crate::encode::npz`]).
+    Npz,
+    /// The texels as raw little-endian numbers, the layout in the sidecar
+    /// ([`crate::encode::bin`]).
+    Bin,
 }
 
 impl Format {
-    pub const ALL: [Format; 9] = [
+    pub const ALL: [Format; 12] = [
         Format::Exr,
         Format::Ktx2,
         Format::Png,
@@ -57,6 +64,9 @@ impl Format {
         Format::Glsl,
         Format::Hlsl,
         Format::Wgsl,
+        Format::Npy,
+        Format::Npz,
+        Format::Bin,
     ];
 
     pub fn name(self) -> &'static str {
@@ -70,6 +80,9 @@ impl Format {
             Format::Glsl => "glsl",
             Format::Hlsl => "hlsl",
             Format::Wgsl => "wgsl",
+            Format::Npy => "npy",
+            Format::Npz => "npz",
+            Format::Bin => "bin",
         }
     }
 
