@@ -1097,7 +1097,9 @@ fn kind_of(v: &serde_json::Value) -> &'static str {
     }
 }
 
-fn valid_name(s: &str) -> bool {
+/// Whether `s` is a valid preset or table name (a file stem and output folder): 1-64
+/// characters from a-z, A-Z, 0-9, '-', '_', not starting with '-'.
+pub fn valid_name(s: &str) -> bool {
     !s.is_empty()
         && s.len() <= 64
         && !s.starts_with('-')

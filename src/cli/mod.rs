@@ -91,11 +91,16 @@ pub(crate) fn out_line(line: std::fmt::Arguments) -> std::io::Result<()> {
 }
 
 /// Parses the command line (`args[0]` the program name) as [`run`] does: a usage error is
-/// bad input, with clap's message (without its `error: ` prefix).
+/// bad input, with clap's message (without its `error: ` prefix and its closing pointer to
+/// `--help`).
 pub fn parse<I: IntoIterator<Item = OsString>>(args: I) -> Result<Cli, CliError> {
     Cli::try_parse_from(args).map_err(|e| {
         let text = e.render().to_string();
         let text = text.strip_prefix("error: ").unwrap_or(&text).trim_end();
+        let text = text
+            .strip_suffix("For more information, try '--help'.")
+            .unwrap_or(text)
+            .trim_end();
         CliError {
             code: if e.use_stderr() { EXIT_INPUT } else { EXIT_OK },
             msg: text.to_string(),
