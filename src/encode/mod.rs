@@ -3,6 +3,7 @@
 //! input always gives the same bytes, and an encoding error leaves no half-written output.
 
 pub mod bin;
+pub mod dds;
 pub mod exr;
 pub mod ktx2;
 pub mod npy;
@@ -12,7 +13,9 @@ pub mod png_data;
 pub mod shader;
 pub mod shader_ltc;
 pub mod source;
+pub mod texels;
 pub mod unorm;
+pub mod zstd;
 
 pub use self::exr::{decode_exr, DecodedExr, ExrEncoder};
 
