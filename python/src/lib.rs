@@ -174,14 +174,13 @@ fn bake_args(flags: Vec<String>) -> Result<brdfbake::cli::BakeArgs, Error> {
     }
 }
 
+/// The files a bake would write (path, bytes), and its warnings.
+type BakedFiles = (Vec<(String, Py<PyBytes>)>, Vec<String>);
+
 /// Bakes `preset` in memory as `brdfbake bake PRESET FLAGS` does, writing nothing: the files
 /// it would write (path, bytes) and its warnings.
 #[pyfunction]
-fn bake(
-    py: Python<'_>,
-    preset: PresetArg,
-    flags: Vec<String>,
-) -> PyResult<(Vec<(String, Py<PyBytes>)>, Vec<String>)> {
+fn bake(py: Python<'_>, preset: PresetArg, flags: Vec<String>) -> PyResult<BakedFiles> {
     let (files, warnings) = run_cancellable(py, move || {
         let args = bake_args(flags)?;
         let preset = self::preset(preset)?;

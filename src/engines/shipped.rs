@@ -908,7 +908,7 @@ fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<Numb
 
 /// The values of a file of raw little-endian 32-bit floats.
 fn bin_values(bytes: &[u8], name: &str) -> Result<Vec<f64>, String> {
-    if bytes.len() % 4 != 0 {
+    if !bytes.len().is_multiple_of(4) {
         return Err(format!(
             "{name}: {} bytes is not a whole number of float32 values (format bin: raw little-endian 32-bit floats)",
             bytes.len()
