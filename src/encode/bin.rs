@@ -124,34 +124,8 @@ pub fn array_layout(lut: &Lut, storage: Storage) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lut::{Axis, Channel, Convention, Quantity};
 
-    pub(crate) fn table(sizes: &[usize], nc: usize, data: Vec<f32>) -> Lut {
-        Lut {
-            axes: sizes
-                .iter()
-                .enumerate()
-                .map(|(k, &n)| Axis {
-                    name: format!("a{k}"),
-                    quantity: Quantity::Cosine,
-                    size: n,
-                    range: [0.0, 1.0],
-                    convention: Convention::Centers,
-                    warp: Default::default(),
-                    clamp: None,
-                })
-                .collect(),
-            channels: (0..nc)
-                .map(|c| Channel {
-                    name: format!("c{c}"),
-                    meaning: String::new(),
-                })
-                .collect(),
-            data,
-            error_estimate: vec![0.0; nc],
-            evaluations: 0,
-        }
-    }
+    use crate::lut::test_table as table;
 
     #[test]
     fn texels_in_order_as_stored() {
