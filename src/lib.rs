@@ -30,6 +30,7 @@
 //! assert!(e > 0.0 && e <= 1.0);
 //! ```
 
+pub mod approx;
 pub mod cli;
 pub mod deadline;
 pub mod digest;
