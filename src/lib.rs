@@ -37,6 +37,7 @@ pub mod digest;
 pub mod encode;
 pub mod engine;
 pub mod engines;
+pub mod fit;
 pub mod hemisphere;
 pub mod input;
 pub mod kernels;

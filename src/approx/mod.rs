@@ -4,4 +4,5 @@
 
 pub mod minimax;
 pub mod poly;
+pub mod polyfit;
 pub mod program;
