@@ -9,6 +9,7 @@
 //! their Pareto front); how to fit is `crate::approx`'s, which knows nothing of BRDFs.
 
 pub mod form;
+pub mod reference;
 pub mod search;
 pub mod target;
 pub mod vars;
