@@ -3,6 +3,7 @@
 //! input always gives the same bytes, and an encoding error leaves no half-written output.
 
 pub mod exr;
+pub mod function;
 pub mod ktx2;
 pub mod png;
 pub mod png_data;

@@ -331,6 +331,27 @@ fn polynomials(
     pareto(out)
 }
 
+/// One global polynomial of total degree `degree` per channel in the variables `vars`
+/// (no search): the building block of [`search`], public for tests and callers that know
+/// the form they want.
+pub fn fit_polynomial(
+    target: &Target,
+    weight: Weight,
+    vars: &[Var],
+    degree: usize,
+) -> Option<Candidate> {
+    let pts = points(target);
+    let w = weights(target, weight);
+    let s = [Support::total_degree(vars.len(), degree)];
+    let limits = Limits {
+        floor: 0.0,
+        ..Limits::default()
+    };
+    polynomials(target, &pts, &w, vars, &s, &limits, &|| false)
+        .into_iter()
+        .next()
+}
+
 fn candidate(
     target: &Target,
     fitted: Fitted,
