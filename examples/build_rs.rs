@@ -117,6 +117,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             storage: Storage::F16,
             table_name: "dfg".into(),
             array_3d: false,
+            supercompression: Default::default(),
         }),
         Box::new(RustSource {
             table_name: "dfg".into(),

@@ -60,11 +60,12 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if let [flag, path] = args.as_slice() {
         if flag == "--html" {
-            let mut page = String::from(
-                "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><style>.row{display:flex;flex-wrap:wrap;gap:1em} svg text{font-family:sans-serif;font-size:11px}</style></head><body>",
-            );
+            let mut page = brdfbake::report::Page::new();
             cv::section(&mut page);
             page.push_str("</body></html>\n");
+            let page = page.finish(
+                "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><style>.row{display:flex;flex-wrap:wrap;gap:1em} svg text{font-family:sans-serif}</style></head><body>",
+            );
             std::fs::write(path, page).expect("write the page");
             return;
         }

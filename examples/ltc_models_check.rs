@@ -67,7 +67,7 @@ fn main() {
         (mus, alphas) = brdfbake::table::ltc_layout::heitz_axes(64);
     }
     let judged = |i: usize, n: usize| match heitz {
-        Some(st) => i % st == 0 && i < n,
+        Some(st) => i.is_multiple_of(st) && i < n,
         None => true,
     };
     for (name, model) in MODELS {

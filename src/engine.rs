@@ -15,6 +15,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
     let spec = &table.spec;
     let dims = spec.axes.len();
     let has = |f: Format| table.formats.contains(&f);
+    let has_ktx2 = table.formats.iter().any(|f| f.is_ktx2());
     let f32 = spec.storage == Storage::F32;
     let unorm16 = spec.storage == Storage::Unorm16;
     let unorm = spec.storage.is_unorm();
@@ -30,7 +31,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
                      \"storage\": \"unorm8\" or \"f16\" samples everywhere"
                         .to_string(),
                 );
-                if has(Format::Ktx2) && nc <= 2 {
+                if has_ktx2 && nc <= 2 {
                     w.push(format!(
                         "three.js' KTX2Loader (r187) reads R16G16B16A16_UNORM only: this {nc}-channel \
                          table's {} file fails with \"Unsupported vkFormat\"; store 3 or 4 channels \
@@ -48,7 +49,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
                         .to_string(),
                 );
             }
-            if dims == 3 && table.layout_3d == Layout3d::Array && has(Format::Ktx2) {
+            if dims == 3 && table.layout_3d == Layout3d::Array && has_ktx2 {
                 w.push(
                     "three.js' KTX2Loader loads a 2D-array KTX2 as a 2D texture of its first layer \
                      (it ignores layerCount for uncompressed formats): use \"layout_3d\": \"volume\" \
@@ -161,7 +162,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
             }
         }
         Engine::Godot => {
-            if spec.storage == Storage::Unorm8 && has(Format::Ktx2) && nc == 2 {
+            if spec.storage == Storage::Unorm8 && has_ktx2 && nc == 2 {
                 w.push(
                     "Godot's KTX loader reads R8G8_UNORM as FORMAT_LA8 (luminance and alpha): a shader \
                      reads this table's second channel in .a, not .g (and its first in .r, .g and .b); \
@@ -169,7 +170,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
                         .to_string(),
                 );
             }
-            if spec.storage == Storage::Unorm8 && has(Format::Ktx2) && nc >= 3 {
+            if spec.storage == Storage::Unorm8 && has_ktx2 && nc >= 3 {
                 w.push(
                     "Godot's KTX loader has no R8G8B8A8_UNORM (it reads R8G8B8A8_SRGB and _UINT) and \
                      refuses this file (\"Unsupported format 37\"): store it as \"unorm16\" \
@@ -184,7 +185,7 @@ pub fn warnings(table: &PresetTable) -> Vec<String> {
                         .to_string(),
                 );
             }
-            if dims == 3 && has(Format::Ktx2) {
+            if dims == 3 && has_ktx2 {
                 w.push(
                     "Godot's KTX loader reads 2D textures only (it refuses 3D and array KTX2 files): \
                      build a Texture3D or Texture2DArray from the slices in a script \

@@ -338,6 +338,76 @@ impl Axis {
         s
     }
 
+    /// The coordinate `x` of this axis as the physical quantity it stands for, for people:
+    /// `n·v = 0.5`, `r = 0.4 (α = 0.16)`, `η = 1.5`, `η = 1 + 2e-8`, `exponent e = 5`.
+    pub fn physical(&self, x: f64) -> String {
+        let (sym, value) = self.physical_parts(x, crate::numfmt::num);
+        format!("{sym} = {value}")
+    }
+
+    /// [`Axis::physical`] with 3 significant digits and without the α of a perceptual
+    /// roughness, for short texts: `n·v = 0.0317`, `r = 0.35`.
+    pub fn physical_short(&self, x: f64) -> String {
+        let (sym, value) = self.physical_parts(x, crate::numfmt::short);
+        let value = value.split(" (α").next().unwrap_or(&value).to_string();
+        format!("{sym} = {value}")
+    }
+
+    /// The symbol of [`Axis::physical`] (`n·v`, `r`, `η`).
+    pub fn physical_symbol(&self) -> String {
+        self.physical_parts(0.5, crate::numfmt::num).0
+    }
+
+    /// Coordinates `x0` to `x1` of this axis as a physical range: `n·v from 0.0005 to 0.29`.
+    pub fn physical_range(&self, x0: f64, x1: f64) -> String {
+        let (sym, a) = self.physical_parts(x0, crate::numfmt::num);
+        let (_, b) = self.physical_parts(x1, crate::numfmt::num);
+        format!("{sym} from {a} to {b}")
+    }
+
+    /// [`Axis::physical`] as its symbol and its value: (`r`, `0.4 (α = 0.16)`).
+    fn physical_parts(&self, x: f64, num: fn(f64) -> String) -> (String, String) {
+        use crate::numfmt::near_one;
+        let (sym, val): (&str, String) = match self.quantity {
+            Quantity::Cosine => {
+                let sym = match self.name.as_str() {
+                    "cos_theta_v" | "n_dot_v" => "n·v",
+                    "cos_theta_l" | "n_dot_l" => "n·l",
+                    "cos_theta_h" | "n_dot_h" => "n·h",
+                    "cos_theta" => "cos θ",
+                    other => other,
+                };
+                (sym, num(x))
+            }
+            Quantity::Roughness(q) => match q {
+                RoughnessQuantity::Alpha => ("α", num(x)),
+                RoughnessQuantity::Perceptual => {
+                    ("r", format!("{} (α = {})", num(x), num(q.to_alpha(x))))
+                }
+                RoughnessQuantity::CookTorranceM => ("m", num(x)),
+                RoughnessQuantity::BlinnPhongExponent => (
+                    "exponent s",
+                    format!("{} (α = {})", num(x), num(q.to_alpha(x))),
+                ),
+                RoughnessQuantity::Exponent => ("exponent n", num(x)),
+            },
+            Quantity::Fresnel(q) => {
+                let p = q.to_parameter(x);
+                if q.is_eta() {
+                    let near = (p - 1.0).abs() < 1e-4 && p != 1.0;
+                    ("η", if near { near_one(p) } else { num(p) })
+                } else if q.is_f0() {
+                    ("F0", num(p))
+                } else {
+                    ("exponent e", num(p))
+                }
+            }
+            Quantity::Anisotropy => ("anisotropy", num(x)),
+            Quantity::FormFactor => (self.name.as_str(), num(x)),
+        };
+        (sym.to_string(), val)
+    }
+
     /// The NDF parameter α of texel `i` (roughness axes only).
     pub fn alpha(&self, i: usize) -> Option<f64> {
         match self.quantity {
@@ -446,6 +516,26 @@ pub fn texel_coordinates(axes: &[Axis], idx: &[usize]) -> Vec<f64> {
         .zip(idx)
         .map(|(a, &i)| a.coord_at(i, c))
         .collect()
+}
+
+/// Texel `idx` described by its physical coordinates, for people: `r = 1 (α = 1), n·v =
+/// 1e-4, η = 1 + 2e-8` ([`Axis::physical`] of each axis at [`texel_coordinates`]).
+pub fn texel_physical(axes: &[Axis], idx: &[usize]) -> String {
+    axes.iter()
+        .zip(texel_coordinates(axes, idx))
+        .map(|(a, x)| a.physical(x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Texel `idx` by its indices in one order for every table, `x` the fastest axis of the
+/// stored layout (as the file runs), for people: `x = 15, y = 0, z = 0`.
+pub fn texel_indices(idx: &[usize]) -> String {
+    idx.iter()
+        .zip(["x", "y", "z"])
+        .map(|(i, n)| format!("{n} = {i}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// [`texel_coordinates`] before the clamp: [`Axis::nominal_coord`] of every axis, a

@@ -494,6 +494,27 @@ pub fn metadata_with_fit(
             "layout": "as the EXR and KTX2 rows: the top image row is y = 0; the slices of a 3D table stacked downward; no colour-space chunk (linear data)",
         });
     }
+    // the containers' own facts, for the formats written
+    let components = crate::encode::texels::components(lut.channels.len());
+    // (only when set: tables written as plain ktx2 keep their sidecars)
+    if table.formats.contains(&crate::preset::Format::Ktx2Zstd) {
+        v["storage"]["ktx2"]["supercompression"] = json!("zstd");
+        v["storage"]["ktx2"]["supercompression_meaning"] = json!(
+            "supercompressionScheme 2 (Zstandard): the level is one zstd frame; a loader inflates it to the texels before upload (libktx: ktxTexture2_CreateFromMemory; three.js: KTX2Loader; Bevy: the zstd feature)"
+        );
+    }
+    if table.formats.contains(&crate::preset::Format::Dds) {
+        let (code, name) = crate::encode::dds::dxgi_format(components, spec.storage);
+        let volume = dims.len() == 3 && table.layout_3d == crate::preset::Layout3d::Volume;
+        v["storage"]["dds"] = json!({
+            "dxgi_format": code,
+            "dxgi_format_name": format!("DXGI_FORMAT_{name}"),
+            "resource_dimension": if volume { "TEXTURE3D" } else { "TEXTURE2D" },
+            "array_size": if dims.len() == 3 && !volume { dims[2] } else { 1 },
+            "channels": "as ktx2: 1 -> R, 2 -> RG, 3 -> RGBA with A = 1 (padding), 4 -> RGBA",
+            "orientation": "the first row is y = 0, the top row of the DDS image (Direct3D, Vulkan and Metal texture coordinate v = 0): no y-flip; OpenGL loaders that flip DDS images must not flip these",
+        });
+    }
     if spec.kind.is_ltc() {
         v["ltc"] = ltc_section(table, fit);
     }

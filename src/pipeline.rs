@@ -3,8 +3,9 @@
 //! Nothing is written until every table of the preset has baked and encoded, and then all
 //! files are replaced atomically, so a failure never leaves a partial or mixed set.
 
+use crate::encode::dds::DdsEncoder;
 use crate::encode::exr::ExrEncoder;
-use crate::encode::ktx2::Ktx2Encoder;
+use crate::encode::ktx2::{Ktx2Encoder, Supercompression};
 use crate::encode::png::PngPreview;
 use crate::encode::png_data::PngData;
 use crate::encode::shader::{ShaderLang, ShaderSnippet};
@@ -25,6 +26,10 @@ pub struct BakedTable {
     pub lut: Lut,
     pub files: Vec<PathBuf>,
     pub elapsed: Duration,
+    /// An `ltc` table's fit: the worst probe light's relative lit error per texel, its
+    /// median and largest over the texels (the sidecar's `ltc.fit_error.lit_max`); `None`
+    /// for other tables.
+    pub fit_lit_max: Option<(f64, f64)>,
 }
 
 /// Why baking a preset failed, with the exit code class it maps to.
@@ -67,7 +72,17 @@ pub fn encode(
             storage: table.spec.storage,
             table_name: name,
         }),
-        Format::Ktx2 => one(&Ktx2Encoder {
+        Format::Ktx2 | Format::Ktx2Zstd => one(&Ktx2Encoder {
+            storage: table.spec.storage,
+            table_name: name,
+            array_3d: table.layout_3d == Layout3d::Array,
+            supercompression: if format == Format::Ktx2Zstd {
+                Supercompression::Zstd
+            } else {
+                Supercompression::None
+            },
+        }),
+        Format::Dds => one(&DdsEncoder {
             storage: table.spec.storage,
             table_name: name,
             array_3d: table.layout_3d == Layout3d::Array,
@@ -216,12 +231,26 @@ pub fn bake_preset_until(
         let jpath = dir.join(format!("{}.json", t.spec.name));
         paths.push(jpath.clone());
         files.push((jpath, sidecar));
+        let fit_lit_max = fit.as_ref().and_then(|f| {
+            let c = f.channels.iter().position(|c| c.name == "lit_max")?;
+            let nc = f.channels.len();
+            let mut v: Vec<f64> = f
+                .data
+                .iter()
+                .skip(c)
+                .step_by(nc)
+                .map(|&x| x as f64)
+                .collect();
+            v.sort_by(f64::total_cmp);
+            Some((*v.get(v.len() / 2)?, *v.last()?))
+        });
         baked.push(BakedTable {
             preset: preset.name.clone(),
             table: t.spec.name.clone(),
             lut,
             files: paths,
             elapsed,
+            fit_lit_max,
         });
     }
     Ok((baked, files))

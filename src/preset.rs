@@ -28,6 +28,13 @@ pub enum Format {
     /// KTX 2.0, R/RG/RGBA 16- or 32-bit float or 8- or 16-bit UNORM per `storage` (3
     /// channels padded to 4).
     Ktx2,
+    /// The KTX 2.0 texture of `ktx2` with its level supercompressed by Zstandard
+    /// (`supercompressionScheme` 2): the same `TABLE.ktx2` name, smaller, inflated by the
+    /// loader (libktx, three.js' `KTX2Loader`, Bevy with its `zstd` feature).
+    Ktx2Zstd,
+    /// DDS with the DX10 header: the same components as KTX2 in a DXGI format
+    /// ([`crate::encode::dds`]), for Direct3D, Godot, OGRE and Babylon.js.
+    Dds,
     /// 16-bit PNG previews for people (one greyscale image per channel and a false-colour
     /// image with a legend), never a texture to sample.
     Png,
@@ -47,9 +54,11 @@ pub enum Format {
 }
 
 impl Format {
-    pub const ALL: [Format; 9] = [
+    pub const ALL: [Format; 11] = [
         Format::Exr,
         Format::Ktx2,
+        Format::Ktx2Zstd,
+        Format::Dds,
         Format::Png,
         Format::PngData,
         Format::H,
@@ -63,6 +72,8 @@ impl Format {
         match self {
             Format::Exr => "exr",
             Format::Ktx2 => "ktx2",
+            Format::Ktx2Zstd => "ktx2-zstd",
+            Format::Dds => "dds",
             Format::Png => "png",
             Format::PngData => "png-data",
             Format::H => "h",
@@ -94,7 +105,24 @@ impl Format {
             }
             out.push(*f);
         }
+        Format::check_combination(&out)?;
         Ok(out)
+    }
+
+    /// Formats that cannot be written together: `ktx2` and `ktx2-zstd` both write
+    /// `TABLE.ktx2`.
+    pub fn check_combination(formats: &[Format]) -> Result<(), String> {
+        if formats.contains(&Format::Ktx2) && formats.contains(&Format::Ktx2Zstd) {
+            return Err(
+                "\"ktx2\" and \"ktx2-zstd\" both write TABLE.ktx2: list one of them (ktx2-zstd is the same texture with its level supercompressed by Zstandard)".into(),
+            );
+        }
+        Ok(())
+    }
+
+    /// Whether this format writes the KTX2 texture (plain or supercompressed).
+    pub fn is_ktx2(self) -> bool {
+        matches!(self, Format::Ktx2 | Format::Ktx2Zstd)
     }
 }
 
@@ -316,6 +344,8 @@ impl PresetTable {
     /// Checks that the table can be written in `formats` (the preset's, or `bake --format`'s
     /// in their place): the first refusal of [`format_refusal`], naming the table.
     pub fn check_formats(&self, formats: &[Format]) -> Result<(), String> {
+        Format::check_combination(formats)
+            .map_err(|e| format!("table `{}`: {e}", self.spec.name))?;
         for f in formats {
             if let Some(why) = format_refusal(self.spec.storage, *f) {
                 return Err(format!("table `{}`: {why}", self.spec.name));
@@ -946,6 +976,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             };
             // (a spelling first: with `"channels": ["A", "B", "0"]` the file's "B" is the
             // split sum's B, stored in component G, not component B)
+            sh.spelled = sh.channels.clone();
             for c in sh.channels.iter_mut() {
                 if let Some(k) = spelled.iter().position(|x| x == c) {
                     *c = stored[k].name.clone();
@@ -953,6 +984,13 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             }
             let names: Vec<String> = stored.into_iter().map(|c| c.name).collect();
             sh.validate(&names).map_err(|m| field(at("shipped"), m))?;
+            let axes: Vec<(String, usize)> = table
+                .stored_axes()
+                .iter()
+                .map(|a| (a.name.clone(), a.size))
+                .collect();
+            sh.validate_degenerate(&axes)
+                .map_err(|m| field(at("shipped"), m))?;
             table.shipped = Some(sh);
         }
         tables.push(table);

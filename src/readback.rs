@@ -82,14 +82,14 @@ fn ext_of(path: &Path) -> String {
 pub fn read(path: &Path) -> Result<Readback, ReadError> {
     let ext = ext_of(path);
     let (texture, sidecar_path) = match ext.as_str() {
-        "exr" | "ktx2" | "png" => {
+        "exr" | "ktx2" | "dds" | "png" => {
             let j = path.with_extension("json");
             (Some(path.to_path_buf()), j.is_file().then_some(j))
         }
         "json" => (None, Some(path.to_path_buf())),
         _ => {
             return Err(ReadError::Input(format!(
-                "{}: not a file brdfbake reads back (accepted: .exr, .ktx2, a png-data .png, or the .json sidecar)",
+                "{}: not a file brdfbake reads back (accepted: .exr, .ktx2, .dds, a png-data .png, or the .json sidecar)",
                 path.display()
             )))
         }
@@ -151,7 +151,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         Some(t) => Some(t),
         None => {
             let files = rb.sidecar.as_ref().and_then(|v| v.get("files"));
-            ["exr", "ktx2", "png"].iter().find_map(|k| {
+            ["exr", "ktx2", "dds", "png"].iter().find_map(|k| {
                 let name = files?.get(*k)?.as_str()?;
                 let p = path.with_file_name(name);
                 p.is_file().then_some(p)
@@ -176,6 +176,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         let (lut, facts) = match ext.as_str() {
             "exr" => read_exr(&t, &bytes, rb.table.as_ref())?,
             "png" => read_png_data(&t, &bytes, rb.table.as_ref())?,
+            "dds" => read_dds(&t, &bytes, rb.table.as_ref())?,
             _ => read_ktx2(&t, &bytes, rb.table.as_ref())?,
         };
         if rb.preset.is_none() {
@@ -203,6 +204,7 @@ pub fn read(path: &Path) -> Result<Readback, ReadError> {
         rb.texture_format = Some(match ext.as_str() {
             "exr" => "exr",
             "png" => "png-data",
+            "dds" => "dds",
             _ => "ktx2",
         });
         rb.texture = Some(t);
@@ -658,8 +660,19 @@ fn read_ktx2(
             ));
         }
     }
-    if hd.supercompression_scheme.is_some() || hd.level_count != 1 {
-        return Err(not_ours("supercompressed or mipmapped".into()));
+    if hd.level_count != 1 {
+        return Err(not_ours(format!(
+            "levelCount {}: brdfbake writes one level",
+            hd.level_count
+        )));
+    }
+    match hd.supercompression_scheme {
+        None | Some(::ktx2::SupercompressionScheme::Zstandard) => {}
+        Some(s) => {
+            return Err(not_ours(format!(
+                "supercompressionScheme {s:?}: brdfbake writes none or Zstandard"
+            )))
+        }
     }
     let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
     // u64: depth × layers of a hostile header overflows u32 (found by the readback_ktx2
@@ -697,16 +710,140 @@ fn read_ktx2(
     let need = [h, d, components, comp_bytes]
         .iter()
         .try_fold(w as u128, |n, &k| n.checked_mul(k as u128));
-    if need != Some(level.data.len() as u128) {
+    // (a supercompressed level states its inflated size, which must be the texels')
+    let stored = match hd.supercompression_scheme {
+        None => level.data.len() as u128,
+        Some(_) => level.uncompressed_byte_length as u128,
+    };
+    if need != Some(stored) {
         let need = need.map_or("more than 2^128".to_string(), |n| n.to_string());
         return Err(not_ours(format!(
             "level size does not match its header ({} bytes, the header's {w} x {h} x {d} texels need {need})",
             level.data.len()
         )));
     }
+    if hd.supercompression_scheme.is_some() {
+        facts.push((
+            "supercompression".into(),
+            format!(
+                "zstd ({} bytes, {} inflated)",
+                level.data.len(),
+                level.uncompressed_byte_length
+            ),
+        ));
+    }
+    let level_data: std::borrow::Cow<[u8]> = match hd.supercompression_scheme {
+        None => level.data.into(),
+        Some(_) if level.uncompressed_byte_length > MAX_KTX2_INFLATED_BYTES => {
+            return Err(not_ours(format!(
+                "its level states {} inflated bytes, more than the largest table brdfbake writes ({MAX_KTX2_INFLATED_BYTES})",
+                level.uncompressed_byte_length
+            )))
+        }
+        Some(_) => crate::encode::zstd::decompress(level.data, level.uncompressed_byte_length as usize)
+            .map_err(|e| not_ours(format!("its level: {e}")))?
+            .into(),
+    };
+    texture_lut(
+        path,
+        &level_data,
+        [w, h, d],
+        storage,
+        components,
+        table,
+        facts,
+    )
+}
+
+fn read_dds(
+    path: &Path,
+    bytes: &[u8],
+    table: Option<&PresetTable>,
+) -> Result<(Lut, Facts), ReadError> {
+    let im = crate::encode::dds::read(bytes).map_err(|why| {
+        ReadError::Input(format!(
+            "{}: not a DDS file brdfbake wrote ({why})",
+            path.display()
+        ))
+    })?;
+    let (components, storage) = [1usize, 2, 4]
+        .into_iter()
+        .flat_map(|c| crate::table::Storage::ALL.into_iter().map(move |s| (c, s)))
+        .find(|&(c, s)| crate::encode::dds::dxgi_format(c, s).0 == im.dxgi_format)
+        .expect("dds::read accepts only the formats brdfbake writes");
+    let format_name = crate::encode::dds::dxgi_format(components, storage).1;
+    if let Some(t) = table {
+        if t.spec.storage != storage {
+            return Err(mismatch(
+                path,
+                format!(
+                    "its dxgiFormat {format_name} stores {}, the sidecar says \"storage\": {:?}",
+                    storage.name(),
+                    t.spec.storage.name()
+                ),
+            ));
+        }
+        let volume = t.stored_axes().len() == 3 && t.layout_3d == crate::preset::Layout3d::Volume;
+        if volume != im.volume {
+            return Err(mismatch(
+                path,
+                format!(
+                    "it is a {}, the sidecar's table a {}",
+                    if im.volume {
+                        "volume texture"
+                    } else {
+                        "2D (array) texture"
+                    },
+                    if volume {
+                        "volume"
+                    } else {
+                        "2D texture or array"
+                    }
+                ),
+            ));
+        }
+    }
+    let facts: Facts = vec![
+        (
+            "dxgi_format".into(),
+            format!("DXGI_FORMAT_{format_name} ({})", im.dxgi_format),
+        ),
+        (
+            "size".into(),
+            format!(
+                "{}x{}, depth {}, array size {}",
+                im.width, im.height, im.depth, im.array_size
+            ),
+        ),
+    ];
+    let d = im.depth.max(im.array_size) as usize;
+    texture_lut(
+        path,
+        &bytes[im.data_offset..],
+        [im.width as usize, im.height as usize, d],
+        storage,
+        components,
+        table,
+        facts,
+    )
+}
+
+/// The table held by a texture container's texel bytes (`data`: `size[0]` × `size[1]` ×
+/// `size[2]` texels of `components` components in `storage`, interleaved, x fastest), with
+/// the sidecar's axes and channels when there is one.
+fn texture_lut(
+    path: &Path,
+    data: &[u8],
+    [w, h, d]: [usize; 3],
+    storage: crate::table::Storage,
+    components: usize,
+    table: Option<&PresetTable>,
+    facts: Facts,
+) -> Result<(Lut, Facts), ReadError> {
+    use crate::table::Storage;
+    let comp_bytes = storage.bytes();
     let texels = w * h * d; // ≤ the level's byte count: cannot overflow
-    let raw: Vec<f32> = level
-        .data
+    let raw: Vec<f32> = data
         .chunks_exact(comp_bytes)
         .map(|b| match storage {
             Storage::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
@@ -763,6 +900,10 @@ fn read_ktx2(
         facts,
     ))
 }
+
+/// The largest supercompressed KTX2 level inflated: the largest table
+/// ([`crate::table::spec::MAX_TEXELS`]) of 4 channels of 32 bits.
+pub const MAX_KTX2_INFLATED_BYTES: u64 = crate::table::spec::MAX_TEXELS as u64 * 16;
 
 /// The largest png-data image read back: the largest table (2^24 texels) of 4 channels of
 /// 16 bits, plus room for the text chunks.

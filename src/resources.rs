@@ -65,7 +65,11 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
         per_texel += match f {
             // encoder buffer + the encoded file (KTX2 pads 3 channels to 4)
             Format::Exr => 2 * channels * stored,
-            Format::Ktx2 => 2 * channels.max(if channels == 3 { 4 } else { 1 }) * stored,
+            Format::Ktx2 | Format::Dds => {
+                2 * channels.max(if channels == 3 { 4 } else { 1 }) * stored
+            }
+            // and the compressed level
+            Format::Ktx2Zstd => 3 * channels.max(if channels == 3 { 4 } else { 1 }) * stored,
             // 16-bit grey image per channel + 16-bit RGB false colour, raw and compressed
             Format::Png => 2 * (channels * 2 + 6),
             // the codes (u16), the image rows (at most 4 components) raw and compressed

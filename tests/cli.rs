@@ -1157,7 +1157,7 @@ const ARG_CASES: &[(&str, i32, &[&str], ArgsFn)] = &[
         INPUT,
         &[
             "unknown preset \"no-such-preset\"",
-            "built-in presets:",
+            "Built-in presets:",
             "filament-dfg",
             "smith-g",
         ],

@@ -71,7 +71,7 @@ fn check(preset: &str, table: &str, first_slice: usize, mirror_bound: impl Fn(us
     let ours = stored(preset, None);
     assert_eq!(c.len(), 4096);
     assert_eq!(ours.len(), 4096);
-    let rough = |i: usize| i % 16 > 0;
+    let rough = |i: usize| !i.is_multiple_of(16);
     let (d, i) = worst(&c, &ours, (first_slice * 256..4096).filter(|&i| rough(i)));
     eprintln!("{preset}: max |ours - Cycles| (alpha > 0) = {d:.3e} at {i} (bound {BOUND:.3e})");
     assert!(

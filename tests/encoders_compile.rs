@@ -182,7 +182,7 @@ fn tricky_lut(storage: Storage) -> Lut {
             123456.79,
         ]);
     }
-    while values.len() % 3 != 0 {
+    while !values.len().is_multiple_of(3) {
         values.push(0.5);
     }
     Lut {

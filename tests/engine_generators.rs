@@ -17,7 +17,11 @@
 //! controls that must fail: the table with Karis' analytic-light k = (r + 1)²/8, and the
 //! generator half a texel off (at (k + 1)/N instead of (k + 0.5)/N on both axes).
 
+#[path = "common/docs.rs"]
+mod docs;
+
 use brdfbake::lut::Lut;
+use brdfbake::numfmt::fig;
 use brdfbake::preset::PresetTable;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -174,8 +178,10 @@ fn compare(
     (n, first)
 }
 
-/// Prints the 1024-point generator's error against the table (exact to ~1e-7): max, mean.
-fn report(name: &str, lut: &Lut, g: &Grid, gen: &[([f64; 2], [f64; 2])]) {
+/// Prints the 1024-point generator's error against the table (exact to ~1e-7): max, mean;
+/// returns the max of A and B.
+fn report(name: &str, lut: &Lut, g: &Grid, gen: &[([f64; 2], [f64; 2])]) -> [f64; 2] {
+    let mut out = [0.0; 2];
     for (c, ch) in ["A", "B"].iter().enumerate() {
         let (mut max, mut sum, mut at, mut bmax) = (0.0f64, 0.0, (0, 0), 0.0f64);
         for (k, &(i, j)) in g.texels.iter().enumerate() {
@@ -191,10 +197,13 @@ fn report(name: &str, lut: &Lut, g: &Grid, gen: &[([f64; 2], [f64; 2])]) {
             sum / g.texels.len() as f64,
             g.texels.len()
         );
+        out[c] = max;
     }
+    out
 }
 
-fn run(name: &str, g: &Grid, e16k: f64) {
+/// Runs the checks; returns the 1024-point generator's largest error in A and B.
+fn run(name: &str, g: &Grid, e16k: f64) -> [f64; 2] {
     let t = engine_table(name, &|s| s.to_string());
     assert_eq!(
         (t.spec.axes[0].size, t.spec.axes[1].size),
@@ -211,7 +220,7 @@ fn run(name: &str, g: &Grid, e16k: f64) {
     eprintln!("{name}: the 16384-point rule vs 262144 points, largest difference: {fine:.3e}");
     assert!(fine <= e16k / 2.0, "{name}: {fine}");
     let gen = generator(g, 0.0, e16k);
-    report(name, &lut, g, &gen);
+    let worst = report(name, &lut, g, &gen);
     let (n, first) = compare(&lut, g, &gen, &gen);
     assert_eq!(
         n, 0,
@@ -236,6 +245,7 @@ fn run(name: &str, g: &Grid, e16k: f64) {
     // where A and B change fastest, tell it apart — 29 texel channels; on Unreal's 128 × 32,
     // 3990 of 8192)
     assert!(n >= 10, "{name}: the shifted generator passed ({n})");
+    worst
 }
 
 /// Unreal's PreIntegratedGF (128 × 32, every texel; the computed values, before the
@@ -244,7 +254,15 @@ fn run(name: &str, g: &Grid, e16k: f64) {
 fn unreal_preintegrated_gf_is_its_generator_converged() {
     let (nx, ny) = (128, 32);
     let texels = (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).collect();
-    run("unreal-preintegrated-gf", &Grid { nx, ny, texels }, 3e-3);
+    let [a, b] = run("unreal-preintegrated-gf", &Grid { nx, ny, texels }, 3e-3);
+    docs::assert_says(
+        "docs/engines.md",
+        &format!(
+            "Unreal's A off by up to {}, B by {} at all 4,096 texels",
+            fig(a),
+            fig(b)
+        ),
+    );
 }
 
 /// LearnOpenGL's BRDF LUT (512², RG16F): every 8th texel on both axes and the last row and
@@ -259,7 +277,8 @@ fn learnopengl_brdf_lut_is_its_generator_converged() {
         .iter()
         .flat_map(|&j| idx.iter().map(move |&i| (i, j)))
         .collect();
-    run(
+    let count = texels_len(&idx);
+    let [a, b] = run(
         "learnopengl-brdf-lut",
         &Grid {
             nx: n,
@@ -268,4 +287,18 @@ fn learnopengl_brdf_lut_is_its_generator_converged() {
         },
         6e-3,
     );
+    docs::assert_says(
+        "docs/engines.md",
+        &format!(
+            "LearnOpenGL's A by {}, B by {} at {count} of its texels",
+            fig(a),
+            fig(b)
+        ),
+    );
+}
+
+/// The number of texels of the grid `idx` × `idx`, as the docs write it (`4,225`).
+fn texels_len(idx: &[usize]) -> String {
+    let n = idx.len() * idx.len();
+    format!("{},{:03}", n / 1000, n % 1000)
 }

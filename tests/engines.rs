@@ -6,7 +6,7 @@
 //! and that the defects the comparison reports are the known ones.
 //!
 //! Data: tests/data/engines/ (README there: sources, commits, licences); EEVEE's GPL values
-//! are quoted in this file only.
+//! are quoted in tests/data/engines/eevee/ (quotes files `brdfbake compare` reads).
 
 #[path = "common/cli.rs"]
 mod cli;
@@ -169,46 +169,24 @@ fn threejs_dfg_lut_agrees_but_for_its_grazing_rows() {
     assert!(worst > 0.1, "a transposed layout should not fit: {worst}");
 }
 
-/// Quoted from Blender's `source/blender/draw/engines/eevee_next/eevee_lut.cc`
-/// (`bsdf_split_sum_ggx[64][64]`, blender/blender at 30de3d7c1a7959f63e798a70864afa09fd6c2d39,
-/// GPL-2.0-or-later, Copyright Blender Authors): (row y, column x, A, B).
-const EEVEE_BSDF_SPLIT_SUM: &[(usize, usize, f64, f64)] = &[
-    (0, 0, 1.000000, 0.000000),
-    (0, 16, 0.995477, 0.000003),
-    (0, 30, 0.932610, 0.000024),
-    (0, 32, 0.910633, 0.000029),
-    (0, 63, 0.306836, 0.000034),
-    (6, 63, 0.308214, 0.000042),
-    (7, 30, 0.931551, 0.000039),
-    (32, 0, 0.999813, 0.001142),
-    (32, 1, 0.999813, 0.001144),
-    (32, 16, 0.993015, 0.001740),
-    (32, 32, 0.880956, 0.002952),
-    (32, 48, 0.613033, 0.001641),
-    (32, 63, 0.351683, 0.000615),
-    (37, 0, 0.996990, 0.004883),
-    (39, 0, 0.988297, 0.008279),
-    (41, 0, 0.985117, 0.013658),
-    (55, 0, 0.744803, 0.257623),
-    (55, 32, 0.746789, 0.079092),
-    (55, 63, 0.487919, 0.007866),
-    (60, 0, 0.385213, 0.614211),
-    (60, 16, 0.496848, 0.390012),
-    (61, 0, 0.276129, 0.723108),
-    (62, 0, 0.148122, 0.854843),
-    (62, 1, 0.147883, 0.852087),
-    (62, 2, 0.148442, 0.851087),
-    (62, 16, 0.451182, 0.440252),
-    (62, 32, 0.739035, 0.142218),
-    (62, 63, 0.577402, 0.017556),
-    (63, 0, 0.000502, 0.999954),
-    (63, 1, 0.006617, 0.893869),
-    (63, 8, 0.219179, 0.716226),
-    (63, 16, 0.483830, 0.449170),
-    (63, 32, 0.747330, 0.149059),
-    (63, 48, 0.732939, 0.049937),
-    (63, 63, 0.593906, 0.019723),
-];
+/// EEVEE's `bsdf_split_sum_ggx` texels quoted in `tests/data/engines/eevee/bsdf_split_sum_ggx.txt`
+/// (GPL-2.0-or-later, Copyright Blender Authors): (row y, column x, A, B).
+fn eevee_bsdf_split_sum() -> Vec<(usize, usize, f64, f64)> {
+    std::fs::read_to_string(data("eevee/bsdf_split_sum_ggx.txt"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            (
+                w[0].parse().unwrap(),
+                w[1].parse().unwrap(),
+                w[2].parse().unwrap(),
+                w[3].parse().unwrap(),
+            )
+        })
+        .collect()
+}
 
 /// EEVEE's generator averages 512² samples per texel with a float32 running sum. Once the
 /// sum passes 2^17 its spacing is 2^-6, so each addition may round by 2^-7 and the mean by
@@ -225,7 +203,7 @@ fn eevee_bsdf_split_sum_agrees_and_its_alpha_zero_column_is_the_float32_sum() {
     let ours = stored(&t);
     let bound = 2f64.powi(-7);
     let mut alpha_zero_worst: f64 = 0.0;
-    for &(y, x, a, b) in EEVEE_BSDF_SPLIT_SUM {
+    for (y, x, a, b) in eevee_bsdf_split_sum() {
         let (oa, ob) = (
             ours.texel([x, y, 0], 0) as f64,
             ours.texel([x, y, 0], 1) as f64,
@@ -267,9 +245,9 @@ fn eevee_bsdf_split_sum_agrees_and_its_alpha_zero_column_is_the_float32_sum() {
         s.replace("\"warp\": \"sqrt-one-minus\", ", "")
     });
     let lin = stored(&linear);
-    let worst = EEVEE_BSDF_SPLIT_SUM
-        .iter()
-        .map(|&(y, x, a, _)| (lin.texel([x, y, 0], 0) as f64 - a).abs())
+    let worst = eevee_bsdf_split_sum()
+        .into_iter()
+        .map(|(y, x, a, _)| (lin.texel([x, y, 0], 0) as f64 - a).abs())
         .fold(0.0, f64::max);
     assert!(
         worst > 5.0 * bound,

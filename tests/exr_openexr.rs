@@ -194,7 +194,7 @@ fn mixed(idx: [usize; 3], c: usize) -> f32 {
         1e-30,
     ];
     let i = idx[0] + 7 * idx[1] + 31 * idx[2] + 3 * c;
-    if i % 3 == 0 {
+    if i.is_multiple_of(3) {
         SPECIAL[(i / 3) % SPECIAL.len()]
     } else {
         (i as f32 * 0.731).sin() * 10f32.powi((i % 9) as i32 - 4)

@@ -48,6 +48,7 @@ mod defaults;
 mod judges;
 
 use brdfbake::encode::shader::lookup_function_name;
+use brdfbake::encode::Encoder;
 use brdfbake::lut::{Convention, Lut, Warp};
 use brdfbake::table::Storage;
 use serde_json::{json, Value};
@@ -1042,6 +1043,38 @@ fn default_tables_sample_as_probe_says_on_a_software_gpu() {
             true,
             None,
             Expect::Error("texture-formats-tier1"),
+        );
+    }
+    // Zstandard-supercompressed KTX2 (`--format ktx2-zstd`): three.js' KTX2Loader inflates the
+    // level with its zstd decoder and the texels sample as the plain file's (f32, f16, UNORM8)
+    for label in ["karis-envbrdf/envbrdf", "storage/eevee-f16", "storage/e8"] {
+        let ti = find(label);
+        let t = &tables[ti];
+        let zstd = brdfbake::encode::ktx2::Ktx2Encoder {
+            storage: t.storage,
+            table_name: t.label.clone(),
+            array_3d: t.layout == "array",
+            supercompression: brdfbake::encode::ktx2::Supercompression::Zstd,
+        }
+        .encode(&t.lut, &[])
+        .unwrap();
+        assert_eq!(
+            ktx2::Reader::new(&zstd[..])
+                .unwrap()
+                .header()
+                .supercompression_scheme,
+            Some(ktx2::SupercompressionScheme::Zstandard)
+        );
+        add(
+            &mut files,
+            &mut cases,
+            ti,
+            "webgl",
+            Some(zstd),
+            None,
+            true,
+            None,
+            Expect::Match,
         );
     }
     // an f32 table on a device without float32-filterable: WebGPU refuses it

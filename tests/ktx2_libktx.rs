@@ -15,7 +15,7 @@
 //!   1.0 or the largest code);
 //! - `ktx2check --warn-as-error` accepts the file.
 
-use brdfbake::encode::ktx2::{Ktx2Encoder, WRITER};
+use brdfbake::encode::ktx2::{Ktx2Encoder, Supercompression, WRITER};
 use brdfbake::encode::{EncodeError, Encoder};
 use brdfbake::lut::{Channel, Lut};
 use brdfbake::table::Storage;
@@ -28,67 +28,11 @@ use std::ptr;
 
 #[path = "common/luts.rs"]
 mod luts;
+use luts::{unorm_code, value, values_for};
 
 /// A synthetic table of `channels` channels (named E, A, B, cloth).
 fn lut(sizes: &[usize], channels: usize, f: impl Fn([usize; 3], usize) -> f32) -> Lut {
     luts::lut(sizes, &["E", "A", "B", "cloth"][..channels], f)
-}
-
-/// Values that differ in every texel and channel, with signs, small and large magnitudes
-/// and f16 rounding cases (ties, subnormals, the largest finite half).
-fn value(t: [usize; 3], c: usize) -> f32 {
-    const SPECIAL: [f32; 8] = [
-        0.0,
-        -0.0,
-        1.0 + 1.0 / 2048.0, // halfway between two halves: ties to even
-        6.0e-8,             // f16 subnormal
-        65504.0,
-        -65519.0, // rounds to -65504 in f16
-        1.0e-30,  // f16 underflows to 0
-        0.333_333_34,
-    ];
-    let i = (t[2] * 7 + t[1]) * 13 + t[0];
-    if (i + c) % 5 == 0 {
-        SPECIAL[(i / 5 + c) % SPECIAL.len()]
-    } else {
-        (i as f32 * 0.37 + c as f32 * 1.91).sin() * 10f32.powi((i % 7) as i32 - 3)
-    }
-}
-
-/// Values in [0, 1] (what a UNORM table holds) that differ in every texel and channel, with
-/// the rounding cases: the ends, an exact tie (0.5 is 127.5 and 32767.5 codes), values within
-/// half a step outside [0, 1] (they round to the end codes).
-fn unorm_value(t: [usize; 3], c: usize) -> f32 {
-    const SPECIAL: [f32; 7] = [0.0, 1.0, 0.5, 1.0 + 1e-6, -1e-6, 1e-8, 0.999_999];
-    let i = (t[2] * 7 + t[1]) * 13 + t[0];
-    if (i + c) % 4 == 0 {
-        SPECIAL[(i / 4 + c) % SPECIAL.len()]
-    } else {
-        0.5 + 0.5 * (i as f32 * 0.37 + c as f32 * 1.91).sin()
-    }
-}
-
-/// The test values for `storage`.
-fn values_for(storage: Storage) -> fn([usize; 3], usize) -> f32 {
-    if storage.is_unorm() {
-        unorm_value
-    } else {
-        value
-    }
-}
-
-/// The UNORM code of `v` computed here, independently of the encoder: the nearest integer to
-/// v·max, a tie going to the even one.
-fn unorm_code(v: f32, max: u32) -> u16 {
-    let x = v as f64 * max as f64;
-    let f = x.floor();
-    let c = if x - f > 0.5 || (x - f == 0.5 && f % 2.0 == 1.0) {
-        f + 1.0
-    } else {
-        f
-    };
-    assert!((0.0..=max as f64).contains(&c), "{v} is not storable");
-    c as u16
 }
 
 fn encoder(storage: Storage, array_3d: bool) -> Ktx2Encoder {
@@ -96,6 +40,7 @@ fn encoder(storage: Storage, array_3d: bool) -> Ktx2Encoder {
         storage,
         table_name: "test-table".into(),
         array_3d,
+        supercompression: Supercompression::None,
     }
 }
 
@@ -324,6 +269,16 @@ fn ktx2check() -> PathBuf {
 const KTX2CHECK_TRAILING_PADDING_QUIRK: &str =
     "Size of image data in file does not match size calculated from";
 
+/// ktx2check 4.0.0's rule for supercompressed files that the specification has since
+/// dropped: KTX 2.0 as first published set a supercompressed texture's `bytesPlane0` to 0;
+/// the Data Format specification's issue 27 (KhronosGroup/DataFormat) concluded that the
+/// bytes per plane must keep the uncompressed format's value, which the current specification
+/// says, and later libktx reads a 0 there as "the deprecated way", reconstructing the value.
+/// brdfbake writes the current form (the DFD of the plain file); libktx 4.0.0 itself loads
+/// and inflates it (asserted in the test).
+const KTX2CHECK_ZSTD_BYTES_PLANE_QUIRK: &str =
+    "DFD bytes/plane must be 0 for a supercompressed texture";
+
 /// Runs `ktx2check --warn-as-error`: `Ok` if it accepts the file, else its report.
 fn ktx2check_report(bytes: &[u8]) -> Result<(), String> {
     let dir = tempfile::tempdir().unwrap();
@@ -356,7 +311,7 @@ fn run_ktx2check(bytes: &[u8], level_length: usize, alignment: usize, what: &str
         .collect();
     let quirk_only = issues.len() == 1 && issues[0].contains(KTX2CHECK_TRAILING_PADDING_QUIRK);
     assert!(
-        quirk_only && level_length % alignment != 0,
+        quirk_only && !level_length.is_multiple_of(alignment),
         "{what}: ktx2check rejected the file:\n{report}"
     );
 }
@@ -644,6 +599,94 @@ fn table_3d_as_3d_texture_and_as_array() {
         encoder(Storage::F16, true).encode(&t, &[]).unwrap(),
         encoder(Storage::F16, false).encode(&t, &[]).unwrap()
     );
+}
+
+/// Zstandard supercompression (`supercompressionScheme` 2, the `ktx2-zstd` format): libktx
+/// loads the file and inflates its level to exactly the bytes it loads from the plain file of
+/// the same table, with the same vkFormat, sizes, layers, DFD and key/value data; the `ktx2`
+/// crate sees the scheme and the inflated length in the level index; ktx2check accepts it.
+#[test]
+fn zstd_supercompressed_tables_inflate_to_the_plain_texels() {
+    let shapes: [(&[usize], usize, bool); 6] = [
+        (&[9], 1, false),
+        (&[7, 3], 2, false),
+        (&[5, 4], 3, false),
+        (&[6, 5], 4, false),
+        (&[4, 3, 5], 2, false),
+        (&[4, 3, 5], 4, true),
+    ];
+    for storage in Storage::ALL {
+        for (sizes, nc, array_3d) in shapes {
+            let what = format!("{sizes:?}, {nc} channels, {storage:?}, array {array_3d}");
+            let t = lut(sizes, nc, values_for(storage));
+            let plain_encoder = encoder(storage, array_3d);
+            let plain = plain_encoder.encode(&t, &[]).unwrap();
+            let zstd_encoder = Ktx2Encoder {
+                supercompression: Supercompression::Zstd,
+                ..plain_encoder
+            };
+            let z = zstd_encoder.encode(&t, &[]).unwrap();
+            assert_eq!(
+                z,
+                zstd_encoder.encode(&t, &[]).unwrap(),
+                "{what}: deterministic"
+            );
+
+            let r = ktx2::Reader::new(&z[..]).unwrap();
+            assert_eq!(
+                r.header().supercompression_scheme,
+                Some(ktx2::SupercompressionScheme::Zstandard),
+                "{what}"
+            );
+            let plain_level = ktx2::Reader::new(&plain[..])
+                .unwrap()
+                .levels()
+                .next()
+                .unwrap()
+                .data
+                .len();
+            let level = r.levels().next().unwrap();
+            assert_eq!(
+                level.uncompressed_byte_length as usize, plain_level,
+                "{what}"
+            );
+
+            let (zt, pt) = (Texture::from_memory(&z), Texture::from_memory(&plain));
+            let (a, b) = (zt.get(), pt.get());
+            assert_eq!(
+                (
+                    a.vkFormat,
+                    a.baseWidth,
+                    a.baseHeight,
+                    a.baseDepth,
+                    a.numLayers,
+                    a.isArray
+                ),
+                (
+                    b.vkFormat,
+                    b.baseWidth,
+                    b.baseHeight,
+                    b.baseDepth,
+                    b.numLayers,
+                    b.isArray
+                ),
+                "{what}"
+            );
+            assert_eq!(zt.dfd(), pt.dfd(), "{what}: DFD");
+            assert_eq!(zt.keys(), pt.keys(), "{what}");
+            assert_eq!(zt.data(), pt.data(), "{what}: the inflated texels");
+            if let Err(report) = ktx2check_report(&z) {
+                let issues: Vec<&str> = report
+                    .lines()
+                    .filter(|l| l.contains("ERROR") || l.contains("WARNING") || l.contains("FATAL"))
+                    .collect();
+                assert!(
+                    issues.len() == 1 && issues[0].contains(KTX2CHECK_ZSTD_BYTES_PLANE_QUIRK),
+                    "{what}: ktx2check rejected the file:\n{report}"
+                );
+            }
+        }
+    }
 }
 
 #[test]

@@ -646,9 +646,9 @@ fn report_plots_the_fit_error() {
     assert!(o.status.success(), "{}", cli::stderr(&o));
     let page = std::fs::read_to_string(dir.path().join("r/index.html")).unwrap();
     assert_eq!(
-        page.matches("<h3>Fit error of the LTC").count(),
-        1,
-        "one table is fitted"
+        page.matches("\">Fit error of the LTC").count(),
+        2,
+        "one table is fitted: its heading and its entry in the contents"
     );
     assert!(page.contains("Fit error of the LTC — ltc_1"));
     let side: Value =

@@ -11,13 +11,13 @@ pub struct BakeArgs {
     /// Preset names (from presets/ or built in) or preset file paths. Default: every preset.
     pub presets: Vec<String>,
     /// Output directory.
-    #[arg(long, default_value = "out")]
+    #[arg(long, default_value = DEFAULT_OUT)]
     pub out: PathBuf,
     /// Worker threads (default: all cores). Outputs are identical for any count.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
     /// Output formats for every table, overriding the presets' (comma-separated:
-    /// exr, ktx2, png, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
+    /// exr, ktx2, ktx2-zstd, dds, png, png-data, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
     #[arg(long, value_name = "LIST")]
     pub format: Option<String>,
     /// Print nothing but errors.
@@ -56,6 +56,9 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
         } else if *f == Format::PngData {
             // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
             keys.push("png".to_string());
+        } else if f.is_ktx2() {
+            // (ktx2-zstd is TABLE.ktx2 too; the sidecar says which)
+            keys.push("ktx2".to_string());
         } else {
             keys.push(f.name().to_string());
         }
@@ -125,7 +128,25 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
                 }
             }
             let files = sidecar.get("files");
-            for key in expected_keys(t, formats.unwrap_or(&t.formats)) {
+            let wanted = formats.unwrap_or(&t.formats);
+            // a KTX2 file supercompressed as asked (the input hash does not hold the formats)
+            let zstd = sidecar
+                .pointer("/storage/ktx2/supercompression")
+                .and_then(|v| v.as_str())
+                == Some("zstd");
+            let ktx2 = dir.join(format!("{}.ktx2", t.spec.name));
+            if wanted.contains(&Format::Ktx2Zstd) && !zstd {
+                bad(
+                    ktx2.clone(),
+                    "written as plain ktx2, ktx2-zstd asked for".into(),
+                );
+            } else if wanted.contains(&Format::Ktx2) && zstd {
+                bad(
+                    ktx2.clone(),
+                    "written as ktx2-zstd, plain ktx2 asked for".into(),
+                );
+            }
+            for key in expected_keys(t, wanted) {
                 let name = format!("{}.{key}", t.spec.name);
                 let path = dir.join(&name);
                 if files.and_then(|f| f.get(&key)).is_none() {
@@ -180,12 +201,42 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
         Err(CliError {
             code: super::EXIT_FAILURE,
             msg: format!(
-                "{} output(s) missing or stale in {}; run brdfbake bake to update",
+                "{} output(s) missing or stale in {}; to update them, run: {}",
                 stale.len(),
-                a.out.display()
+                a.out.display(),
+                rebake_command(a)
             ),
         })
     }
+}
+
+/// Where `bake` writes unless told (`--out`).
+const DEFAULT_OUT: &str = "out";
+
+/// The `brdfbake bake` that rewrites what `bake --check` found stale: the user's own presets,
+/// `--out` and `--format`, quoted for a POSIX shell where needed.
+fn rebake_command(a: &BakeArgs) -> String {
+    let quote = |s: &str| {
+        if !s.is_empty()
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_./=,:+@".contains(c))
+        {
+            s.to_string()
+        } else {
+            format!("'{}'", s.replace('\'', "'\\''"))
+        }
+    };
+    let mut cmd = vec!["brdfbake".to_string(), "bake".to_string()];
+    cmd.extend(a.presets.iter().map(|p| quote(p)));
+    if a.out != std::path::Path::new(DEFAULT_OUT) {
+        cmd.push("--out".into());
+        cmd.push(quote(&a.out.display().to_string()));
+    }
+    if let Some(f) = &a.format {
+        cmd.push("--format".into());
+        cmd.push(quote(f));
+    }
+    cmd.join(" ")
 }
 
 pub fn run(a: BakeArgs) -> Result<(), CliError> {
@@ -290,6 +341,7 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
                     "seconds": b.elapsed.as_secs_f64(),
                     "evaluations": b.lut.evaluations,
                     "estimated_max_error": err,
+                    "ltc_fit_lit_error": b.fit_lit_max.map(|(median, max)| serde_json::json!({"median": median, "max": max})),
                     "files": b.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
                 })
             })
@@ -312,14 +364,25 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
             let err = b.lut.error_estimate.iter().cloned().fold(0.0, f64::max);
             let channels: Vec<&str> = b.lut.channels.iter().map(|c| c.name.as_str()).collect();
             let files: Vec<String> = b.files.iter().map(|f| f.display().to_string()).collect();
+            // an LTC fit's matrix is no integral (its estimate is 0): what the fit makes of the
+            // light is its error
+            let fit = b.fit_lit_max.map(|(median, max)| {
+                format!(
+                    "LTC fit: the worst probe light's relative lit error per texel, median {median:.1e}, max {max:.1e} (ltc.fit_error in the sidecar)"
+                )
+            });
+            let error = match fit {
+                Some(fit) if err == 0.0 => fit,
+                Some(fit) => format!("est. max error {err:.1e}; {fit}"),
+                None => format!("est. max error {err:.1e}"),
+            };
             outln!(
-                "{}/{}: {} {} in {:.2} s, est. max error {:.1e} -> {}",
+                "{}/{}: {} {} in {:.2} s, {error} -> {}",
                 b.preset,
                 b.table,
                 dims.join("x"),
                 channels.join(","),
                 b.elapsed.as_secs_f64(),
-                err,
                 files.join(", ")
             );
         }
@@ -408,10 +471,22 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
                 preset::parse(t, &format!("built-in preset {n}"), n)
                     .map_err(|e| CliError::input(e.to_string()))?
             } else {
+                let sorted = |l: &[(&str, &str)]| {
+                    let mut v: Vec<&str> = l.iter().map(|(n, _)| *n).collect();
+                    v.sort_unstable();
+                    v.join(", ")
+                };
+                let known = crate::presets::BUILTIN
+                    .iter()
+                    .chain(crate::presets::ENGINES)
+                    .map(|(n, _)| *n);
+                let hint = did_you_mean(a, known)
+                    .map(|n| format!(" Did you mean `{n}`?"))
+                    .unwrap_or_default();
                 return Err(CliError::input(format!(
-                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/ or {PRESET_DIR}/{ENGINE_PRESET_DIR}/, not built in (built-in presets: {}; engine presets: {})",
-                    crate::presets::BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
-                    crate::presets::ENGINES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                    "unknown preset {a:?}: not a file, not in {PRESET_DIR}/ or {PRESET_DIR}/{ENGINE_PRESET_DIR}/, not built in.{hint} Built-in presets: {}; engine presets: {}",
+                    sorted(crate::presets::BUILTIN),
+                    sorted(crate::presets::ENGINES)
                 )));
             }
         };
@@ -424,4 +499,60 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
         out.push(preset);
     }
     Ok(out)
+}
+
+/// The name of `known` nearest to `typed` by edit distance, when it is near enough to be a
+/// typo (at most a third of its letters, and at least one, differ).
+pub fn did_you_mean<'a>(typed: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let typed_l = typed.to_lowercase();
+    let limit = (typed.chars().count() / 3).max(1);
+    known
+        .map(|k| (edit_distance(&typed_l, &k.to_lowercase()), k))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, k)| (*d, *k))
+        .map(|(_, k)| k)
+}
+
+/// The Levenshtein distance of two strings, in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            cur[j + 1] = (prev[j] + usize::from(ca != *cb))
+                .min(prev[j + 1] + 1)
+                .min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+#[cfg(test)]
+mod suggestion_tests {
+    use super::did_you_mean;
+
+    #[test]
+    fn typos_get_the_nearest_name() {
+        let known = [
+            "filament-dfg",
+            "karis-envbrdf",
+            "cycles-ggx-e",
+            "cycles-ggx-eavg",
+        ];
+        assert_eq!(
+            did_you_mean("filament-dgf", known.iter().copied()),
+            Some("filament-dfg")
+        );
+        assert_eq!(
+            did_you_mean("Filament-DFG", known.iter().copied()),
+            Some("filament-dfg")
+        );
+        assert_eq!(
+            did_you_mean("cycles-ggx-eav", known.iter().copied()),
+            Some("cycles-ggx-eavg")
+        );
+        assert_eq!(did_you_mean("something-else", known.iter().copied()), None);
+    }
 }

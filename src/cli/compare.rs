@@ -59,11 +59,18 @@ pub fn run(a: CompareArgs) -> Result<(), CliError> {
         smaller: "compare a smaller table",
     })?;
     let file = a.file.display().to_string();
-    let c =
-        compare_table(&preset.name, t, &bytes, &file, Some(&deadline)).map_err(|e| match e {
-            CompareError::Input(m) => CliError::input(m),
-            CompareError::Bake(e) => super::bake_error(&preset.name, e),
-        })?;
+    let c = compare_table(
+        &preset.name,
+        preset.source.as_ref(),
+        t,
+        &bytes,
+        &file,
+        Some(&deadline),
+    )
+    .map_err(|e| match e {
+        CompareError::Input(m) => CliError::input(m),
+        CompareError::Bake(e) => super::bake_error(&preset.name, e),
+    })?;
     if a.json {
         let mut doc = serde_json::to_value(&c).expect("serializable");
         doc["schema"] = json!("brdfbake.compare/1");
@@ -124,16 +131,25 @@ pub(super) fn pick_table<'p>(
     }
 }
 
-fn at(v: &[(String, f64)]) -> String {
-    v.iter()
-        .map(|(n, x)| format!("{n}={}", num(*x)))
-        .collect::<Vec<_>>()
-        .join(", ")
+fn stats_line(s: &crate::engines::compare::Stats, dims: usize) -> String {
+    format!(
+        "max |error| {} at texel {} ({}): {} vs exact {}; mean {}, rms {}, mean signed {} ({} texels)",
+        num(s.max_abs),
+        crate::lut::texel_indices(&s.worst_texel[..dims]),
+        s.worst_physical,
+        num(s.worst_value),
+        num(s.worst_exact),
+        num(s.mean_abs),
+        num(s.rms),
+        num(s.mean_signed),
+        s.texels
+    )
 }
 
 fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result<(), CliError> {
+    let dims = c.dims.len();
     outln!(
-        "{}/{} against {} ({} texels)",
+        "{}/{} against {} ({} texels; {})",
         c.preset,
         c.table,
         c.file,
@@ -141,7 +157,8 @@ fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result
             .iter()
             .map(|d| d.to_string())
             .collect::<Vec<_>>()
-            .join(" x ")
+            .join(" x "),
+        c.storage
     );
     if let Some(s) = source {
         outln!(
@@ -158,37 +175,55 @@ fn print_text(c: &Comparison, source: Option<&crate::engines::Source>) -> Result
         }
     }
     outln!(
-        "  exact: brdfbake at tolerance {} (largest error estimate {})",
+        "  exact: brdfbake at tolerance {} (largest error estimate {}); texels x, y, z along the file's axes, x fastest",
         num(c.reference_tolerance),
         num(c.exact_error_estimate)
     );
-    if let Some(why) = c.reference_is_own_bake {
+    for e in &c.excluded {
         outln!(
-            "  (the table's own tolerance: {why}; brdfbake's rows below compare its table with the same computation, \
-             0 by construction, and its error is bounded by the error estimate, {})",
-            num(c.exact_error_estimate)
+            "  left out of the verdicts: {} texel {} ({}, {} texels): {}",
+            e.axis,
+            e.index,
+            e.at,
+            e.texels,
+            e.why
         );
     }
     for ch in &c.channels {
-        outln!("  channel {}:", ch.channel);
-        let mut rows = vec![("shipped ", &ch.shipped), ("brdfbake", &ch.brdfbake)];
-        if let Some(s) = &ch.brdfbake_stored {
-            rows.push(("brdfbake as stored", s));
+        if ch.name == ch.channel {
+            outln!("  {}:", ch.name);
+        } else {
+            outln!("  {} (stored as {}):", ch.name, ch.channel);
         }
-        for (who, s) in rows {
-            outln!(
-                "    {who}: max |error| {} at texel {:?} ({}: {} vs exact {}), mean {}, rms {}, mean signed {}",
-                num(s.max_abs),
-                &s.worst_texel[..c.dims.len()],
-                at(&s.worst_at),
-                num(s.worst_value),
-                num(s.worst_exact),
-                num(s.mean_abs),
-                num(s.rms),
-                num(s.mean_signed)
-            );
+        outln!("    verdict: {}", ch.verdict.text);
+        match &ch.shipped_regular {
+            Some(r) => {
+                outln!("    shipped, judged texels: {}", stats_line(r, dims));
+                outln!(
+                    "    shipped, with the left-out slices: {}",
+                    stats_line(&ch.shipped, dims)
+                );
+            }
+            None => outln!("    shipped: {}", stats_line(&ch.shipped, dims)),
         }
-        for f in &ch.findings {
+        match c.reference_is_own_bake {
+            Some(why) => outln!(
+                "    brdfbake: not compared ({why}: the reference is brdfbake's own bake at the table's tolerance, so the difference is 0 by construction; its error is bounded by the bake's error estimate, {})",
+                num(c.exact_error_estimate)
+            ),
+            None => {
+                outln!("    brdfbake: {}", stats_line(&ch.brdfbake, dims));
+                if let Some(s) = &ch.brdfbake_stored {
+                    outln!("    brdfbake as stored: {}", stats_line(s, dims));
+                }
+            }
+        }
+        // (lines of texels are named, grouped into ranges, in the verdict)
+        for f in ch
+            .findings
+            .iter()
+            .filter(|f| !matches!(f, crate::engines::compare::Finding::Line { .. }))
+        {
             outln!("    - {}", f.describe());
         }
     }

@@ -33,27 +33,27 @@ pub struct EvalArgs {
     #[arg(long)]
     pub ndf: Option<String>,
     /// The NDF's alpha.
-    #[arg(long, conflicts_with = "roughness")]
+    #[arg(long, conflicts_with = "roughness", allow_negative_numbers = true)]
     pub alpha: Option<f64>,
     /// Perceptual roughness r (alpha = r^2).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub roughness: Option<f64>,
     /// cos theta (n.h for D, n.v for G1, G2, E, dfg, sheen).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub cos_theta: Option<f64>,
     /// cos theta_l (G2 only).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub cos_theta_l: Option<f64>,
     /// Masking of G2, E, E_avg and dfg: none, v-groove, smith-separable,
     /// smith-height-correlated (default), ashikhmin.
     #[arg(long)]
     pub masking: Option<String>,
     /// Schlick Fresnel F0 for E and E_avg (default: F = 1).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub f0: Option<f64>,
     /// Quadrature tolerance (estimated absolute error), in [1e-12, 1e-2]; a result whose
     /// estimate exceeds it is an error (exit 1).
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_negative_numbers = true)]
     pub tolerance: f64,
     /// Print one JSON document instead of text.
     #[arg(long)]
@@ -209,6 +209,12 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         clamp: None,
     };
     let fresnel = match a.f0 {
+        Some(f0) if !(0.0..=1.0).contains(&f0) => {
+            return Err(CliError::input(format!(
+                "--f0 {} is not a reflectance: give Schlick's F0 in [0, 1]",
+                crate::numfmt::num(f0)
+            )))
+        }
         Some(f0) => Fresnel::Schlick { f0 },
         None => Fresnel::None,
     };

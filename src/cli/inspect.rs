@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct InspectArgs {
-    /// A .exr or .ktx2 texture brdfbake wrote (its .json sidecar is read from next to it),
+    /// A .exr, .ktx2 or .dds texture brdfbake wrote (its .json sidecar is read from next to it),
     /// or the .json sidecar itself.
     pub file: PathBuf,
     /// Print one JSON document instead of text.
@@ -25,6 +25,7 @@ pub(super) fn file_bytes(path: &Path) -> u64 {
     let side = size(&path.with_extension("json"));
     let textures = size(&path.with_extension("exr"))
         .max(size(&path.with_extension("ktx2")))
+        .max(size(&path.with_extension("dds")))
         .max(png_decoded_bytes(&path.with_extension("png")));
     size(path).max(textures) + side
 }
@@ -225,7 +226,10 @@ fn notes(rb: &Readback) -> Vec<String> {
         v.push("no JSON sidecar next to the texture: axes, channel meanings and the bake error are unknown beyond the file's own header".into());
     }
     if rb.texture.is_none() {
-        v.push("no texture found for this sidecar (looked for its files.exr / files.ktx2)".into());
+        v.push(
+            "no texture found for this sidecar (looked for its files.exr / files.ktx2 / files.dds)"
+                .into(),
+        );
     }
     if rb.hash_matches == Some(false) {
         let same_version = rb

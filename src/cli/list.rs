@@ -1,58 +1,136 @@
-//! `brdfbake list`: presets and table kinds.
+//! `brdfbake list`: presets and table kinds, as text or one JSON document.
 
 use super::CliError;
 use crate::table::TableKind;
+use serde_json::json;
 
 #[derive(clap::Args, Debug)]
-pub struct ListArgs {}
+pub struct ListArgs {
+    /// One JSON document (schema brdfbake.list/1) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
 
-pub fn run(_: ListArgs) -> Result<(), CliError> {
-    outln!("Presets:");
+/// A table of a preset: name, kind and stored sizes.
+fn table_doc(t: &crate::preset::PresetTable) -> serde_json::Value {
+    json!({
+        "name": t.spec.name,
+        "kind": t.spec.kind.name(),
+        "size": t.stored_axes().iter().map(|a| a.size).collect::<Vec<_>>(),
+    })
+}
+
+fn dims(t: &serde_json::Value) -> String {
+    t["size"]
+        .as_array()
+        .map(|s| {
+            s.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join("x")
+        })
+        .unwrap_or_default()
+}
+
+pub fn run(a: ListArgs) -> Result<(), CliError> {
     let presets = super::bake::resolve(&[])?;
-    for p in &presets {
-        let tables: Vec<String> = p
-            .tables
-            .iter()
-            .map(|t| {
-                let dims: Vec<String> = t.spec.axes.iter().map(|a| a.size.to_string()).collect();
-                format!(
-                    "{} ({} {})",
-                    t.spec.name,
-                    t.spec.kind.name(),
-                    dims.join("x")
-                )
+    let defaults: Vec<serde_json::Value> = presets
+        .iter()
+        .map(|p| {
+            json!({
+                "name": p.name,
+                "tables": p.tables.iter().map(table_doc).collect::<Vec<_>>(),
             })
-            .collect();
-        outln!("  {:<20} {}", p.name, tables.join(", "));
-    }
-    outln!("\nEngine presets (baked and compared by name: brdfbake bake NAME, brdfbake compare NAME FILE):");
+        })
+        .collect();
+    let mut engines = Vec::new();
     for (n, t) in crate::presets::ENGINES {
         let p = crate::preset::parse(t, &format!("built-in preset {n}"), n)
             .map_err(|e| CliError::input(e.to_string()))?;
-        let what = p
-            .source
-            .as_ref()
-            .map_or(String::new(), |s| format!("{} {}", s.engine, s.table));
-        let dims: Vec<String> = p
-            .tables
+        engines.push(json!({
+            "name": n,
+            "engine": p.source.as_ref().map(|s| s.engine.clone()),
+            "engine_table": p.source.as_ref().map(|s| s.table.clone()),
+            "tables": p.tables.iter().map(table_doc).collect::<Vec<_>>(),
+        }));
+    }
+    let kinds: Vec<serde_json::Value> = TableKind::ALL
+        .into_iter()
+        .chain(TableKind::CLASSIC)
+        .map(|k| {
+            json!({
+                "name": k.name(),
+                "axes": k.axis_names(),
+                "description": k.description(),
+            })
+        })
+        .collect();
+    if a.json {
+        let doc = json!({
+            "schema": "brdfbake.list/1",
+            "presets": defaults,
+            "engine_presets": engines,
+            "table_kinds": kinds,
+        });
+        outln!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+        return Ok(());
+    }
+    outln!("Presets:");
+    for p in &defaults {
+        let tables: Vec<String> = p["tables"]
+            .as_array()
+            .expect("tables")
             .iter()
             .map(|t| {
-                t.stored_axes()
-                    .iter()
-                    .map(|a| a.size.to_string())
-                    .collect::<Vec<_>>()
-                    .join("x")
+                format!(
+                    "{} ({} {})",
+                    t["name"].as_str().unwrap_or(""),
+                    t["kind"].as_str().unwrap_or(""),
+                    dims(t)
+                )
             })
             .collect();
-        outln!("  {:<28} {} ({})", n, what, dims.join(", "));
+        outln!(
+            "  {:<20} {}",
+            p["name"].as_str().unwrap_or(""),
+            tables.join(", ")
+        );
+    }
+    outln!("\nEngine presets (baked and compared by name: brdfbake bake NAME, brdfbake compare NAME FILE):");
+    for e in &engines {
+        let what = match (e["engine"].as_str(), e["engine_table"].as_str()) {
+            (Some(en), Some(t)) => format!("{en} {t}"),
+            _ => String::new(),
+        };
+        let sizes: Vec<String> = e["tables"]
+            .as_array()
+            .expect("tables")
+            .iter()
+            .map(dims)
+            .collect();
+        outln!(
+            "  {:<28} {} ({})",
+            e["name"].as_str().unwrap_or(""),
+            what,
+            sizes.join(", ")
+        );
     }
     outln!("\nTable kinds:");
-    for k in TableKind::ALL.into_iter().chain(TableKind::CLASSIC) {
+    for k in &kinds {
+        let axes: Vec<&str> = k["axes"]
+            .as_array()
+            .expect("axes")
+            .iter()
+            .filter_map(|x| x.as_str())
+            .collect();
         outln!(
             "  {:<12} axes {:<40} {}",
-            k.name(),
-            k.axis_names().join(", "),
-            k.description()
+            k["name"].as_str().unwrap_or(""),
+            axes.join(", "),
+            k["description"].as_str().unwrap_or("")
         );
     }
     Ok(())

@@ -13,7 +13,7 @@ pub const LIT_TOLERANCE: f64 = 1e-9;
 
 #[derive(clap::Args, Debug)]
 pub struct ProbeArgs {
-    /// A .exr or .ktx2 texture brdfbake wrote, with its .json sidecar next to it (or the sidecar).
+    /// A .exr, .ktx2 or .dds texture brdfbake wrote, with its .json sidecar next to it (or the sidecar).
     pub file: PathBuf,
     /// Where to sample, one value per axis in the axis' own quantity (e.g.
     /// cos_theta_v=0.5,roughness=0.3; the names are the sidecar's axis names).
@@ -155,7 +155,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
     })?;
     let lut = rb.lut.as_ref().ok_or_else(|| {
         CliError::input(format!(
-            "{}: no texture found next to the sidecar (its files.exr / files.ktx2)",
+            "{}: no texture found next to the sidecar (its files.exr / files.ktx2 / files.dds)",
             a.file.display()
         ))
     })?;

@@ -150,6 +150,7 @@ pub fn run(a: ReportArgs) -> Result<(), CliError> {
     for (preset, t, file, bytes) in &compares {
         let c = crate::engines::compare_table(
             &preset.name,
+            preset.source.as_ref(),
             t,
             bytes,
             &file.display().to_string(),

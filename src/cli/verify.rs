@@ -298,25 +298,28 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "png") {
+    if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "dds" | "png") {
         return Err(CliError::input(format!(
-            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2 or png-data .png \
+            "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2, .dds or png-data .png \
              texture brdfbake wrote, or its .json sidecar",
             p.display(),
         )));
     }
-    let threads = rayon::current_num_threads();
-    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
-    // a table baked here)
-    // (and the sidecar's ltc.fit_error section, for an ltc table read from files)
-    let mut jobs: Vec<(
+    /// (label, table, texels, scale, lookup_error, fit_error section, what is checked)
+    type Job = (
         String,
         crate::preset::PresetTable,
         Lut,
         f64,
         serde_json::Value,
         Option<serde_json::Value>,
-    )> = Vec::new();
+        Checked,
+    );
+    let threads = rayon::current_num_threads();
+    // (label, table, texels, scale, the sidecar's lookup_error: the file's, or computed for
+    // a table baked here)
+    // (and the sidecar's ltc.fit_error section, for an ltc table read from files)
+    let mut jobs: Vec<Job> = Vec::new();
     let deadline;
     let schema = if ext == "json" { json_schema(p) } else { None };
     if let Some(sc) = schema.as_deref() {
@@ -330,7 +333,9 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             )));
         }
     }
-    if matches!(ext, "exr" | "ktx2" | "png") || schema.as_deref() == Some(crate::meta::SCHEMA) {
+    if matches!(ext, "exr" | "ktx2" | "dds" | "png")
+        || schema.as_deref() == Some(crate::meta::SCHEMA)
+    {
         // the files' bytes, the texels as f32 and their f64 exact values: ~4 times the files
         let bytes = super::inspect::file_bytes(p);
         let d = a.guards.admit(&super::guards::Work {
@@ -386,7 +391,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             .sidecar
             .as_ref()
             .and_then(|s| s.pointer("/ltc/fit_error").cloned());
-        jobs.push((a.target.clone(), table, lut, rb.scale, stated, fit_error));
+        jobs.push((
+            a.target.clone(),
+            table,
+            lut,
+            rb.scale,
+            stated,
+            fit_error,
+            Checked::File,
+        ));
     } else {
         // a .json without a sidecar's schema is read as a preset; say so when that fails,
         // so that a damaged sidecar is not reported only in a preset's terms
@@ -441,7 +454,15 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     let stored =
                         crate::encode::unorm::quantized(&t.spec.name, &scaled, t.spec.storage)
                             .map_err(|e| CliError::input(format!("preset {}: {e}", preset.name)))?;
-                    jobs.push((label, t.clone(), stored, t.scale, stated, None));
+                    jobs.push((
+                        label,
+                        t.clone(),
+                        stored,
+                        t.scale,
+                        stated,
+                        None,
+                        Checked::Baked,
+                    ));
                     continue;
                 }
                 // (baked here, the texels are the values: no scale applied)
@@ -450,13 +471,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     ..t.clone()
                 };
                 let stated = crate::meta::lookup_error(&values, &lut);
-                jobs.push((label, t.clone(), lut, 1.0, stated, None));
+                jobs.push((label, t.clone(), lut, 1.0, stated, None, Checked::Baked));
             }
         }
     }
     let mut failed = Vec::new();
     let mut docs = Vec::new();
-    for (label, table, lut, scale, sidecar, fit_error) in &jobs {
+    for (label, table, lut, scale, sidecar, fit_error, checked) in &jobs {
         let spec = &table.spec;
         let texels = if a.all {
             all_texels(lut)
@@ -479,13 +500,22 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             .map_or(0.0, |step| step / 2.0 / scale);
         let threshold = a.tolerance + rounding;
         if !a.json {
-            outln!("{label}: {n} texels recomputed at tolerance {REFERENCE_TOLERANCE:e}");
-            if rounding > 0.0 {
-                outln!(
-                    "  note: {} storage rounds each texel by up to half a step, {rounding:.3e}: texels are checked against --tolerance + that = {threshold:.3e}",
-                    spec.storage.name()
-                );
-            }
+            outln!(
+                "{label}: {}; {n} texels recomputed exactly (reference tolerance {REFERENCE_TOLERANCE:e})",
+                checked.what()
+            );
+            outln!(
+                "  exit 1 if a texel's error (relative above 1) exceeds {threshold:.3e}: --tolerance {:e}{}; the lookups between texels below are the table's interpolation error, for information",
+                a.tolerance,
+                if rounding > 0.0 {
+                    format!(
+                        " plus the {} storage's rounding, half a step: {rounding:.3e}",
+                        spec.storage.name()
+                    )
+                } else {
+                    String::new()
+                }
+            );
         }
         let mut chans = Vec::new();
         // an ltc table's matrix entries have no exact value to recompute (exact_at gives NaN):
@@ -528,7 +558,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                     outln!(
                         "  {name:<12} max error {e:.3e} at texel {:?} (stored {stored:.12}, refit {want:.12}) {}",
                         &idx[..lut.axes.len()],
-                        if ok { "ok" } else { "OVER TOLERANCE" }
+                        if ok { "ok" } else { "OVER THE THRESHOLD" }
                     );
                 }
                 chans.push(json!({"channel": name, "recomputed_by": "refit", "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "refit": want, "ok": ok, "threshold": threshold}));
@@ -543,7 +573,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
                 outln!(
                     "  {name:<12} max error {e:.3e} at texel {:?} (stored {stored:.12}, exact {exact:.12}) {}",
                     &idx[..lut.axes.len()],
-                    if ok { "ok" } else { "OVER TOLERANCE" }
+                    if ok { "ok" } else { "OVER THE THRESHOLD" }
                 );
             }
             chans.push(json!({"channel": name, "max_error": e, "texel": &idx[..lut.axes.len()], "stored": stored, "exact": exact, "ok": ok, "threshold": threshold}));
@@ -555,7 +585,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         // them by at most the bound (not gated: the interpolation error is the resolution's)
         if !a.json {
             outln!(
-                "  lookups between texels ({cells} cell middles, ideal filtering; hardware = + 8-bit weight rounding bound):"
+                "  lookups between texels ({cells} cell middles, ideal filtering; hardware = + 8-bit weight rounding bound; not in the exit code):"
             );
         }
         let mut lookup_docs = Vec::new();
@@ -581,7 +611,7 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             }
             lookup_docs.push(json!({"channel": name, "ideal_filtering_max_error": e, "at": at, "lookup": got, "exact": exact, "hardware_filtering_max_error": e + bound, "weight_rounding_bound": bound, "sidecar_ideal_filtering": worst, "within_sidecar_worst_case": within, "sidecar_interpolation_estimate": estimate}));
         }
-        let mut doc = json!({"table": label, "texels_checked": n, "channels": chans, "lookups": {"cell_middles_checked": cells, "channels": lookup_docs}});
+        let mut doc = json!({"table": label, "checked": checked.name(), "texels_checked": n, "threshold": threshold, "channels": chans, "lookups": {"cell_middles_checked": cells, "in_exit_code": false, "channels": lookup_docs}});
         // the sidecar's per-texel fit error against the refit's
         if !refit.is_empty() {
             match fit_error {
@@ -666,6 +696,31 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             a.tolerance,
             failed.join(", ")
         )))
+    }
+}
+
+/// What `verify` checked: a file brdfbake wrote, or a preset baked in memory.
+#[derive(Clone, Copy, Debug)]
+enum Checked {
+    File,
+    Baked,
+}
+
+impl Checked {
+    fn what(self) -> &'static str {
+        match self {
+            Checked::File => "checking the file",
+            Checked::Baked => {
+                "checking the preset baked in memory (not the files in out/: give a file to check what was written)"
+            }
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Checked::File => "file",
+            Checked::Baked => "baked-in-memory",
+        }
     }
 }
 

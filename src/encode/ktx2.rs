@@ -49,7 +49,6 @@ use crate::lut::Lut;
 use crate::table::spec::Storage;
 use ::ktx2::dfd::{Basic, Block, ChannelTypeQualifiers, DataFormatFlags, SampleInformation};
 use ::ktx2::{ColorModel, ColorPrimaries, Format, Header, Index, LevelIndex, TransferFunction};
-use half::f16;
 use std::num::NonZeroU8;
 
 /// Encodes a table as a KTX 2.0 texture (see the module documentation for the layout).
@@ -63,6 +62,29 @@ pub struct Ktx2Encoder {
     pub table_name: String,
     /// 3D tables only: write a 2D array texture (one layer per slice) instead of a 3D texture.
     pub array_3d: bool,
+    /// The level's supercompression (`supercompressionScheme`).
+    pub supercompression: Supercompression,
+}
+
+/// A KTX2 level's supercompression.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Supercompression {
+    /// The texels as they are uploaded (`supercompressionScheme` 0).
+    #[default]
+    None,
+    /// Zstandard (`supercompressionScheme` 2): one frame holding the level's texels, inflated
+    /// by the loader before upload (libktx, three.js' KTX2Loader with its zstd decoder).
+    Zstd,
+}
+
+impl Supercompression {
+    /// The name the sidecar gives it (`storage.ktx2.supercompression`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Supercompression::None => "none",
+            Supercompression::Zstd => "zstd",
+        }
+    }
 }
 
 /// The value of the `KTXwriter` key.
@@ -98,7 +120,18 @@ impl Encoder for Ktx2Encoder {
         let shape = self.shape(lut)?;
         let (format, component_bytes) = vk_format(shape.components, self.storage);
         let texel_bytes = component_bytes * shape.components;
-        let level = self.level_data(lut, &shape, component_bytes)?;
+        let level = super::texels::interleaved(
+            &self.table_name,
+            lut,
+            self.storage,
+            shape.components,
+            "KTX2 *_SFLOAT with 16 bits",
+        )?;
+        let stored_length = level.len();
+        let level = match self.supercompression {
+            Supercompression::None => level,
+            Supercompression::Zstd => super::zstd::compress(&level),
+        };
 
         let dfd = data_format_descriptor(shape.components, self.storage);
         let kvd = key_value_data(&[("KTXorientation", shape.orientation), ("KTXwriter", WRITER)]);
@@ -107,7 +140,13 @@ impl Encoder for Ktx2Encoder {
         let dfd_offset = Header::LENGTH + LevelIndex::LENGTH;
         let kvd_offset = dfd_offset + dfd.len();
         let kvd_end = kvd_offset + kvd.len();
-        let level_offset = kvd_end.next_multiple_of(lcm(texel_bytes, 4));
+        // the level's alignment: lcm(texel size, 4), or 1 for supercompressed data (KTX 2.0,
+        // section 3.9.7 mipPadding)
+        let align = match self.supercompression {
+            Supercompression::None => lcm(texel_bytes, 4),
+            Supercompression::Zstd => 1,
+        };
+        let level_offset = kvd_end.next_multiple_of(align);
         let too_large = || self.shape_error("the table is too large for a KTX2 file");
         let header = Header {
             format: Some(format),
@@ -118,7 +157,10 @@ impl Encoder for Ktx2Encoder {
             layer_count: shape.layers,
             face_count: 1,
             level_count: 1,
-            supercompression_scheme: None,
+            supercompression_scheme: match self.supercompression {
+                Supercompression::None => None,
+                Supercompression::Zstd => Some(::ktx2::SupercompressionScheme::Zstandard),
+            },
             index: Index {
                 dfd_byte_offset: dfd_offset as u32,
                 dfd_byte_length: dfd.len() as u32,
@@ -132,7 +174,7 @@ impl Encoder for Ktx2Encoder {
         let level_index = LevelIndex {
             byte_offset: level_offset as u64,
             byte_length: level_length,
-            uncompressed_byte_length: level_length,
+            uncompressed_byte_length: u64::try_from(stored_length).map_err(|_| too_large())?,
         };
 
         let total = level_offset
@@ -208,71 +250,6 @@ impl Ktx2Encoder {
             components: if channels == 3 { 4 } else { channels },
             orientation,
         })
-    }
-
-    /// The level's bytes, after checking every value.
-    fn level_data(
-        &self,
-        lut: &Lut,
-        shape: &Shape,
-        component_bytes: usize,
-    ) -> Result<Vec<u8>, EncodeError> {
-        let nc = shape.channels;
-        let (nx, ny) = (lut.dim(0), lut.dim(1));
-        for (c, channel) in lut.channels.iter().enumerate() {
-            let values = || lut.data.iter().skip(c).step_by(nc).copied();
-            if let Some((i, v)) = values().enumerate().find(|(_, v)| !v.is_finite()) {
-                return Err(EncodeError::NonFinite {
-                    table: self.table_name.clone(),
-                    channel: channel.name.clone(),
-                    texel: [i % nx, (i / nx) % ny, i / (nx * ny)],
-                    value: v as f64,
-                });
-            }
-            if self.storage == Storage::F16 && values().any(|v| f16::from_f32(v).is_infinite()) {
-                let largest = values().fold(0.0f32, |m, v| if v.abs() > m.abs() { v } else { m });
-                return Err(EncodeError::Unrepresentable {
-                    table: self.table_name.clone(),
-                    channel: channel.name.clone(),
-                    value: largest as f64,
-                    format: "f16 (KTX2 *_SFLOAT with 16 bits, largest finite value 65504)",
-                });
-            }
-        }
-
-        let texels = lut.data.len() / nc;
-        let mut out = Vec::with_capacity(texels * shape.components * component_bytes);
-        if let Some(max) = self.storage.unorm_max() {
-            let codes = super::unorm::codes(&self.table_name, lut, self.storage)?;
-            let mut push = |c: u16| match self.storage {
-                Storage::Unorm8 => out.push(c as u8),
-                _ => out.extend_from_slice(&c.to_le_bytes()),
-            };
-            for texel in codes.chunks_exact(nc) {
-                for &c in texel {
-                    push(c);
-                }
-                // the alpha padding of a 3-channel table: 1.0
-                for _ in nc..shape.components {
-                    push(max as u16);
-                }
-            }
-            return Ok(out);
-        }
-        let mut push = |v: f32| match self.storage {
-            Storage::F16 => out.extend_from_slice(&f16::from_f32(v).to_le_bytes()),
-            _ => out.extend_from_slice(&v.to_le_bytes()),
-        };
-        for texel in lut.data.chunks_exact(nc) {
-            for &v in texel {
-                push(v);
-            }
-            // the alpha padding of a 3-channel table
-            for _ in nc..shape.components {
-                push(1.0);
-            }
-        }
-        Ok(out)
     }
 }
 

@@ -2,6 +2,7 @@
 //! file. Encoders never touch the file system — writing is `crate::write`'s job — so the same
 //! input always gives the same bytes, and an encoding error leaves no half-written output.
 
+pub mod dds;
 pub mod exr;
 pub mod function;
 pub mod ktx2;
@@ -10,7 +11,9 @@ pub mod png_data;
 pub mod shader;
 pub mod shader_ltc;
 pub mod source;
+pub mod texels;
 pub mod unorm;
+pub mod zstd;
 
 pub use self::exr::{decode_exr, DecodedExr, ExrEncoder};
 

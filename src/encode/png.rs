@@ -6,7 +6,8 @@
 //! (`round((v − min)/(max − min)·65535)`; all 0 when `max = min`), one pixel per texel; and
 //! one false-colour RGB image of the first channel, `preview-<channel>-colour.png`, with each
 //! texel enlarged to a block of pixels and a colour bar (with tick marks at 0, ¼, ½, ¾ and 1
-//! of the range) to its right. Every file carries tEXt chunks: the channel's `min` and `max`
+//! of the range, labelled with their values to 4 significant digits in a 5×7 pixel font;
+//! the in-between labels only where they fit) to its right. Every file carries tEXt chunks: the channel's `min` and `max`
 //! (shortest round-trip f32 decimals), the mapping, the orientation, the axes, the note
 //! "preview, not a texture", and the caller's attributes (tEXt when ASCII, else iTXt).
 //!
@@ -56,6 +57,41 @@ const MARGIN: usize = 4;
 /// Background and tick colours (16-bit grey levels).
 const BACKGROUND: u16 = 0x2000;
 const TICK_COLOUR: u16 = 0xffff;
+/// Gap between a tick mark and its label, in glyph cells (a tick mark right before a label
+/// would read as a minus sign).
+const LABEL_GAP: usize = 1;
+
+/// A 5×7 pixel font for the bar's numbers: per glyph, 7 rows top first, bit 4 the left
+/// column.
+const GLYPHS: [(char, [u8; 7]); 14] = [
+    ('0', [0x0e, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0e]),
+    ('1', [0x04, 0x0c, 0x04, 0x04, 0x04, 0x04, 0x0e]),
+    ('2', [0x0e, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1f]),
+    ('3', [0x1f, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0e]),
+    ('4', [0x02, 0x06, 0x0a, 0x12, 0x1f, 0x02, 0x02]),
+    ('5', [0x1f, 0x10, 0x1e, 0x01, 0x01, 0x11, 0x0e]),
+    ('6', [0x06, 0x08, 0x10, 0x1e, 0x11, 0x11, 0x0e]),
+    ('7', [0x1f, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08]),
+    ('8', [0x0e, 0x11, 0x11, 0x0e, 0x11, 0x11, 0x0e]),
+    ('9', [0x0e, 0x11, 0x11, 0x0f, 0x01, 0x02, 0x0c]),
+    ('.', [0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x0c]),
+    ('-', [0x00, 0x00, 0x00, 0x1f, 0x00, 0x00, 0x00]),
+    ('e', [0x00, 0x00, 0x0e, 0x11, 0x1f, 0x10, 0x0e]),
+    ('+', [0x00, 0x04, 0x04, 0x1f, 0x04, 0x04, 0x00]),
+];
+
+/// The rows of `c` in [`GLYPHS`] (blank for a character it lacks).
+fn glyph(c: char) -> [u8; 7] {
+    GLYPHS
+        .iter()
+        .find(|(g, _)| *g == c)
+        .map_or([0; 7], |(_, rows)| *rows)
+}
+
+/// Pixel size of a glyph cell (5 columns and a gap, 7 rows) at `scale`.
+fn cell(scale: usize) -> (usize, usize) {
+    (6 * scale, 7 * scale)
+}
 
 /// Viridis (matplotlib), sampled at 0, 1/8, …, 1; interpolated linearly in between.
 const VIRIDIS: [[f64; 3]; 9] = [
@@ -254,7 +290,21 @@ impl PngPreview {
         let (kx, ky) = (scale(w), scale(h));
         let (dw, dh) = (w * kx, h * ky);
         let bar_x = dw + GAP;
-        let width = bar_x + BAR + TICK + MARGIN;
+        let ticks = [0.0, 0.25, 0.5, 0.75, 1.0];
+        let tick_values: Vec<String> = ticks
+            .iter()
+            .map(|f| format!("{}", min as f64 + f * (max as f64 - min as f64)))
+            .collect();
+        // the labels: 4 significant digits, twice the font's size on a tall image
+        let font = if dh >= 128 { 2 } else { 1 };
+        let (gw, gh) = cell(font);
+        let labels: Vec<String> = ticks
+            .iter()
+            .map(|f| crate::numfmt::sig4(min as f64 + f * (max as f64 - min as f64)))
+            .collect();
+        let label_x = bar_x + BAR + TICK + LABEL_GAP * gw;
+        let label_w = labels.iter().map(|l| l.len() * gw).max().unwrap_or(0);
+        let width = label_x + label_w + MARGIN;
         let height = dh;
         let mut samples = vec![BACKGROUND; width * height * 3];
         let mut put = |x: usize, y: usize, rgb: [u16; 3]| {
@@ -278,17 +328,47 @@ impl PngPreview {
                 put(x, y, colour(f));
             }
         }
-        let ticks = [0.0, 0.25, 0.5, 0.75, 1.0];
+        let tick_row = |f: f64| dh - 1 - (f * (dh - 1) as f64).round() as usize;
         for f in ticks {
-            let y = dh - 1 - (f * (dh - 1) as f64).round() as usize;
+            let y = tick_row(f);
             for x in bar_x + BAR..bar_x + BAR + TICK {
                 put(x, y, [TICK_COLOUR; 3]);
             }
         }
-        let tick_values: Vec<String> = ticks
-            .iter()
-            .map(|f| format!("{}", min as f64 + f * (max as f64 - min as f64)))
-            .collect();
+        // labels centred on their tick, kept inside the image; min and max always, the
+        // others where they clear the labels drawn (max first, then min, then upwards)
+        let mut taken: Vec<usize> = Vec::new();
+        let mut labelled = Vec::new();
+        for k in [4, 0, 1, 2, 3] {
+            let top = (tick_row(ticks[k]) + 1)
+                .saturating_sub(gh.div_ceil(2))
+                .min(dh.saturating_sub(gh));
+            if k != 4 && k != 0 && taken.iter().any(|t| top.abs_diff(*t) < gh + 2) {
+                continue;
+            }
+            taken.push(top);
+            labelled.push(k);
+            for (n, ch) in labels[k].chars().enumerate() {
+                let rows = glyph(ch);
+                for (r, bits) in rows.iter().enumerate() {
+                    for col in 0..5 {
+                        if bits & (0x10 >> col) == 0 {
+                            continue;
+                        }
+                        for dy in 0..font {
+                            for dx in 0..font {
+                                let (x, y) =
+                                    (label_x + n * gw + col * font + dx, top + r * font + dy);
+                                if y < dh {
+                                    put(x, y, [TICK_COLOUR; 3]);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        labelled.sort_unstable();
         let how = vec![
             (
                 "mapping".to_string(),
@@ -302,9 +382,15 @@ impl PngPreview {
                 "legend".to_string(),
                 format!(
                     "colour bar right of the data (columns {bar_x} to {}): bottom = min, top = max, \
-                     linear; tick marks at 0, 1/4, 1/2, 3/4 and 1 of the range, i.e. values {}",
+                     linear; tick marks at 0, 1/4, 1/2, 3/4 and 1 of the range, i.e. values {}; \
+                     labelled (from column {label_x}, 4 significant digits): {}",
                     bar_x + BAR - 1,
-                    tick_values.join(", ")
+                    tick_values.join(", "),
+                    labelled
+                        .iter()
+                        .map(|&k| labels[k].as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             ),
         ];
@@ -456,6 +542,95 @@ mod tests {
         assert_eq!(level(2.0, 2.0, 2.0), 0);
         assert_eq!(colour(0.0), [17498, 319, 21588]);
         assert_eq!(colour(1.0)[0], 65093);
+    }
+
+    /// Reads the text the 5×7 font drew at (x, top): glyph cells until a blank one.
+    fn read_label(img: &Image, x: usize, top: usize, font: usize) -> String {
+        let white = |x: usize, y: usize| {
+            y < img.height && img.samples[(y * img.width + x) * 3] == TICK_COLOUR
+        };
+        let (gw, _) = cell(font);
+        let mut out = String::new();
+        for n in 0.. {
+            let x0 = x + n * gw;
+            if x0 + 5 * font > img.width {
+                break;
+            }
+            let rows: [u8; 7] = std::array::from_fn(|r| {
+                (0..5).fold(0u8, |b, col| {
+                    b | if white(x0 + col * font, top + r * font) {
+                        0x10 >> col
+                    } else {
+                        0
+                    }
+                })
+            });
+            if rows == [0; 7] {
+                break;
+            }
+            let c = GLYPHS.iter().find(|(_, g)| *g == rows).expect("a glyph");
+            out.push(c.0);
+        }
+        out
+    }
+
+    /// The false-colour image prints the bar's minimum and maximum beside its ends: read
+    /// back from the pixels, they are the channel's min and max to 4 significant digits;
+    /// on a 1D table's 32-pixel image too (smaller font, middle label only where it fits).
+    #[test]
+    fn colour_bar_numbers_read_back() {
+        use crate::lut::{Axis, Channel, Convention, Quantity};
+        let axis = |n: usize| Axis {
+            name: "x".into(),
+            quantity: Quantity::Cosine,
+            size: n,
+            range: [0.0, 1.0],
+            convention: Convention::Centers,
+            warp: Default::default(),
+            clamp: None,
+        };
+        // (sizes, min, max, labels drawn)
+        for (sizes, lo, hi, drawn) in [
+            (vec![16, 16], -4.935_667e-9f32, 21.786_14f32, 5),
+            (vec![8], 0.25, 0.75, 3),
+        ] {
+            let n: usize = sizes.iter().product();
+            let lut = Lut {
+                axes: sizes.iter().map(|&s| axis(s)).collect(),
+                channels: vec![Channel {
+                    name: "B".into(),
+                    meaning: "test".into(),
+                }],
+                data: (0..n)
+                    .map(|k| lo + (hi - lo) * k as f32 / (n - 1) as f32)
+                    .collect(),
+                error_estimate: vec![0.0],
+                evaluations: 0,
+            };
+            let p = PngPreview {
+                table_name: "t".into(),
+            };
+            let img = p.false_colour(&lut, 0, &[]).unwrap();
+            let font = if img.height >= 128 { 2 } else { 1 };
+            let (_, gh) = cell(font);
+            let kx = TARGET_SIDE.div_ceil(lut.dim(0)).clamp(1, MAX_SCALE);
+            let bar_x = lut.dim(0) * kx + GAP;
+            let x = bar_x + BAR + TICK + LABEL_GAP * cell(font).0;
+            let top = read_label(&img, x, 0, font);
+            let bottom = read_label(&img, x, img.height - gh, font);
+            for (read, want) in [(&top, hi), (&bottom, lo)] {
+                let v: f64 = read.parse().unwrap();
+                let want = f64::from(want);
+                assert!((v - want).abs() <= 5e-4 * want.abs(), "{read} for {want}");
+            }
+            let legend = &img.text.iter().find(|(k, _)| k == "legend").unwrap().1;
+            let (_, list) = legend
+                .split_once(&format!(
+                    "labelled (from column {x}, 4 significant digits): "
+                ))
+                .expect("the labels");
+            assert_eq!(list.split(", ").count(), drawn, "{legend}");
+        }
     }
 
     #[test]

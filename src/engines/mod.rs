@@ -5,6 +5,7 @@
 //! it, and brdfbake's own table, with exact values at every texel ([`compare`]).
 
 pub mod compare;
+pub mod figures;
 pub mod shipped;
 
 use crate::lut::Lut;
@@ -18,6 +19,9 @@ pub use shipped::Source;
 pub struct Comparison {
     pub preset: String,
     pub table: String,
+    /// The engine's table as the preset's `source` names it (`Cycles (Blender) table_ggx_E`),
+    /// or the preset's table name.
+    pub source_table: String,
     pub file: String,
     /// Stored axis sizes.
     pub dims: Vec<usize>,
@@ -33,6 +37,10 @@ pub struct Comparison {
     /// What brdfbake's computed texels are held to: max |error| / max(1, |exact|) ≤ this
     /// (1e-6, or the table's tolerance plus f32 rounding when coarser).
     pub brdfbake_bound: f64,
+    /// What the file stores, and, for a quotes file, how many texels it quotes.
+    pub storage: String,
+    /// The degenerate slices the preset names, left out of each channel's verdict.
+    pub excluded: Vec<compare::ExcludedSlice>,
     pub channels: Vec<compare::ChannelComparison>,
     /// The shipped table's error per texel (shipped − exact) of each compared channel, in
     /// the stored layout: for the report's heatmaps.
@@ -71,11 +79,12 @@ fn stored_value(storage: Storage, v: f32) -> f32 {
     }
 }
 
-/// Compares table `t` of preset `preset` with `bytes`, the engine's shipped file (`file`
+/// Compares table `t` of preset `preset` (whose `source` is `source`) with `bytes`, the engine's shipped file (`file`
 /// names it in messages). Bakes the table twice: as the preset says, and as the exact
 /// reference.
 pub fn compare_table(
     preset: &str,
+    source: Option<&Source>,
     t: &PresetTable,
     bytes: &[u8],
     file: &str,
@@ -89,9 +98,13 @@ pub fn compare_table(
     })?;
     let stored_axes = t.stored_axes();
     let dims = [0, 1, 2].map(|k| stored_axes.get(k).map_or(1, |a| a.size));
-    let table = shipped
-        .read(bytes, dims, file)
-        .map_err(CompareError::Input)?;
+    let table = shipped.read(bytes, dims, file).map_err(|e| {
+        CompareError::Input(format!(
+            "{e}\n  {preset} reads {}; {file} looks like {}",
+            shipped.expects(None),
+            shipped::looks_like(bytes)
+        ))
+    })?;
     let ours = crate::table::bake_with(
         &t.spec,
         &BakeOptions {
@@ -128,12 +141,23 @@ pub fn compare_table(
     };
     // a texel whose tighter rule does not converge (a near-singular lobe at a grazing view)
     // leaves the reference at the preset's own tolerance, which the preset's bake met
-    let (exact, reference_tolerance) = match reference(&ref_spec) {
-        Ok(l) => (l, ref_spec.tolerance),
-        Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
-        Err(e) => return Err(e.into()),
-    };
     let ours = t.stored(ours);
+    let (exact, reference_tolerance) = match &table.present {
+        // a quotes file: the reference at the quoted texels only (the rest keeps brdfbake's
+        // values, which nothing compares)
+        Some(present) => (
+            quoted_reference(t, &ours, present, ref_spec.tolerance, deadline)?,
+            ref_spec.tolerance,
+        ),
+        None => {
+            let (l, tol) = match reference(&ref_spec) {
+                Ok(l) => (l, ref_spec.tolerance),
+                Err(BakeError::ToleranceMissed { .. }) => (reference(&t.spec)?, t.spec.tolerance),
+                Err(e) => return Err(e.into()),
+            };
+            (t.stored(l), tol)
+        }
+    };
     let stored = (t.spec.storage != Storage::F32).then(|| {
         let mut s = ours.clone();
         for v in s.data.iter_mut() {
@@ -143,8 +167,18 @@ pub fn compare_table(
         }
         s
     });
-    let exact = t.stored(exact);
-    let channels = compare::compare(&table, &ours, stored.as_ref(), &exact);
+    let exact_error = exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e));
+    let (excluded, _) =
+        compare::judged_texels(&exact, table.present.as_deref(), &shipped.degenerate);
+    let channels = compare::compare(&compare::Inputs {
+        shipped: &table,
+        ours: &ours,
+        stored: stored.as_ref(),
+        exact: &exact,
+        exact_error,
+        degenerate: &shipped.degenerate,
+        names: &shipped.spelled,
+    });
     // the shipped table's errors, for the report
     let mut errors = exact.clone();
     errors.channels = channels
@@ -171,16 +205,44 @@ pub fn compare_table(
                     .iter()
                     .position(|x| x == &c.channel)
                     .expect("compared");
+                if table.present.as_ref().is_some_and(|p| !p[i]) {
+                    // (a texel the quotes file does not hold)
+                    return 0.0;
+                }
                 (table.values[i * ncf + f] - exact.data[i * nce + e] as f64) as f32
             })
         })
         .collect();
+    // each left-out slice's largest error, from the errors just computed
+    let mut excluded = excluded;
+    for e in excluded.iter_mut() {
+        let k = errors.axes.iter().position(|a| a.name == e.axis);
+        let nc = errors.channels.len().max(1);
+        let (nx, ny) = (errors.dim(0), errors.dim(1));
+        e.max_abs = errors
+            .data
+            .chunks(nc)
+            .enumerate()
+            .filter(|(t, _)| {
+                k.is_some_and(|k| [t % nx, (t / nx) % ny, t / (nx * ny)][k] == e.index)
+            })
+            .flat_map(|(_, c)| c.iter())
+            .fold(0.0f64, |m, v| m.max(v.abs() as f64));
+    }
     // (the computed texels are f32: 2^-24 relative, well below 1e-6 for values up to ~16)
     let largest = exact.data.iter().fold(0.0f64, |m, v| m.max(v.abs() as f64));
     let rounding = largest * 2f64.powi(-24) + t.spec.tolerance;
     Ok(Comparison {
         preset: preset.to_string(),
         table: t.spec.name.clone(),
+        // (the names without their parenthetical notes: `Cycles (Blender)` is Cycles)
+        source_table: source.map_or_else(
+            || t.spec.name.clone(),
+            |s| {
+                let short = |x: &str| x.split(" (").next().unwrap_or(x).to_string();
+                format!("{} `{}`", short(&s.engine), short(&s.table))
+            },
+        ),
         file: file.to_string(),
         dims: stored_axes.iter().map(|a| a.size).collect(),
         reference_tolerance,
@@ -191,11 +253,61 @@ pub fn compare_table(
                 "a 100x tighter reference does not converge at every texel"
             },
         ),
-        exact_error_estimate: exact.error_estimate.iter().fold(0.0, |m: f64, e| m.max(*e)),
+        exact_error_estimate: exact_error,
         brdfbake_bound: 1e-6f64.max(rounding),
+        storage: table.storage.clone(),
+        excluded,
         channels,
         errors,
     })
+}
+
+/// brdfbake's stored table `ours` with the texels `present` replaced by their exact values
+/// at tolerance `tol` (each a one-point bake), their error estimates its estimate.
+fn quoted_reference(
+    t: &PresetTable,
+    ours: &Lut,
+    present: &[bool],
+    tol: f64,
+    deadline: Option<&crate::deadline::Deadline>,
+) -> Result<Lut, CompareError> {
+    use rayon::prelude::*;
+    let texels: Vec<usize> = (0..present.len()).filter(|t| present[*t]).collect();
+    let (nx, ny) = (ours.dim(0), ours.dim(1));
+    let values: Vec<Result<(Vec<f64>, f64), String>> = texels
+        .par_iter()
+        .map(|&i| {
+            if deadline.is_some_and(|d| d.passed()) {
+                return Err("the time limit passed".into());
+            }
+            let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
+            let x = crate::lut::texel_nominal_coordinates(&ours.axes, &idx[..ours.axes.len()]);
+            let (v, e) = crate::readback::exact_at(&t.spec, &t.to_kind_order(&x), tol)?;
+            Ok((
+                t.stored_values(&v),
+                e.iter().fold(0.0, |m: f64, x| m.max(*x)),
+            ))
+        })
+        .collect();
+    let mut exact = ours.clone();
+    let nc = exact.channels.len();
+    let mut err = 0.0f64;
+    for (i, v) in texels.iter().zip(values) {
+        let (v, e) = v.map_err(|m| match deadline.filter(|d| d.passed()) {
+            Some(d) => CompareError::Bake(BakeError::TimeLimit {
+                name: t.spec.name.clone(),
+                seconds: d.seconds,
+                texels: texels.len(),
+            }),
+            None => CompareError::Input(m),
+        })?;
+        for (d, x) in exact.data[i * nc..(i + 1) * nc].iter_mut().zip(&v) {
+            *d = *x as f32;
+        }
+        err = err.max(e);
+    }
+    exact.error_estimate = vec![err; nc];
+    Ok(exact)
 }
 
 impl Comparison {

@@ -68,6 +68,29 @@ pub struct Shipped {
     /// Leading values of the array to skip (an array holding several tables in a row).
     #[serde(default)]
     pub offset: usize,
+    /// Slices of the shipped table that hold something other than the preset's physics by
+    /// the engine's own construction (Cycles' η slice whose ior rounds to 1.0f, where its
+    /// sampler takes the smooth branch): `compare` names each, says why, and reports the
+    /// shipped table's error both with and without them.
+    #[serde(default)]
+    pub degenerate: Vec<Degenerate>,
+    /// The file's channels as the preset spells them: the engine's own names (`A`, `1-E`),
+    /// before [`Shipped::channels`] is mapped to the stored channels (`R`, `G`, …). Set by the
+    /// preset parser; empty when the two are the same.
+    #[serde(skip)]
+    pub spelled: Vec<String>,
+}
+
+/// One degenerate slice of a shipped table ([`Shipped::degenerate`]).
+#[derive(Clone, Debug, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Degenerate {
+    /// A stored axis' name (`fresnel`).
+    pub axis: String,
+    /// The texel index along it.
+    pub index: usize,
+    /// Why the engine's values there are not comparable with the physical value, for people.
+    pub why: String,
 }
 
 /// The file formats `compare` reads.
@@ -122,9 +145,18 @@ pub struct ShippedTable {
     pub channels: Vec<String>,
     pub values: Vec<f64>,
     /// The quantization step of the stored numbers where they are integers (1/255, 1/65535),
-    /// or the half-float spacing near 1 (2⁻¹¹), or 0 for printed decimals (whose printed
-    /// precision the caller states).
+    /// or the half-float spacing near 1 (2⁻¹¹), or 0 for printed decimals.
     pub step: f64,
+    /// Per value (indexed as `values`): the most by which the file's number can differ from
+    /// the value it was made from through its storage alone — half the spacing of the
+    /// numbers the storage can hold at that value (half a UNORM code, decoded; half an f16
+    /// or f32 ulp; half a unit in the last printed decimal).
+    pub rounding: Vec<f64>,
+    /// What the file stores, for people: `6 decimals`, `f16`, `8-bit UNORM`.
+    pub storage: String,
+    /// The texels the file holds, where it holds only some (a quotes file: `true` at each
+    /// quoted texel); `None`: every texel.
+    pub present: Option<Vec<bool>>,
 }
 
 impl Shipped {
@@ -157,21 +189,55 @@ impl Shipped {
         Ok(())
     }
 
+    /// Checks the degenerate slices against the stored axes (name, size).
+    pub fn validate_degenerate(&self, axes: &[(String, usize)]) -> Result<(), String> {
+        for (k, d) in self.degenerate.iter().enumerate() {
+            let Some((_, size)) = axes.iter().find(|(n, _)| *n == d.axis) else {
+                return Err(format!(
+                    "degenerate[{k}].axis: {:?} is not an axis of the table (its axes: {})",
+                    d.axis,
+                    axes.iter()
+                        .map(|(n, _)| n.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            };
+            if d.index >= *size {
+                return Err(format!(
+                    "degenerate[{k}].index: {} is not a texel of axis {} (0 to {})",
+                    d.index,
+                    d.axis,
+                    size - 1
+                ));
+            }
+            if d.why.trim().is_empty() {
+                return Err(format!(
+                    "degenerate[{k}].why: say why the engine's values there are not comparable"
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Decodes `bytes` (the shipped file) into `texels` texels of the table whose stored axis
-    /// sizes are `dims` (x fastest). `name` names the file in messages.
+    /// sizes are `dims` (x fastest). `name` names the file in messages. A text file that
+    /// declares itself a quotes file (a line `# brdfbake-quotes: z y x T R`, see
+    /// [`QUOTES_MARKER`]) is read as the quoted texels of the table, whatever the format.
     pub fn read(&self, bytes: &[u8], dims: [usize; 3], name: &str) -> Result<ShippedTable, String> {
+        if let Some(columns) = quotes_columns(bytes) {
+            return self.read_quotes(bytes, &columns, dims, name);
+        }
         let nc = self.channels.len();
         let texels = dims[0] * dims[1] * dims[2];
-        let (raw, step) = match self.format {
+        let (raw, kinds) = match self.format {
             ShippedFormat::Text => {
                 let text = std::str::from_utf8(bytes).map_err(|_| {
                     format!("{name}: not a text file (format text expects numbers in text, e.g. a C array)")
                 })?;
                 let values = self.values.unwrap_or(ShippedValues::Float);
-                (
-                    text_array(text, self.symbol.as_deref(), values, name)?,
-                    values.step(),
-                )
+                let (raw, decimals) =
+                    text_array_with_decimals(text, self.symbol.as_deref(), values, name)?;
+                (raw, vec![values.number_kind(decimals); nc])
             }
             ShippedFormat::Png => png_values(bytes, nc, name)?,
             ShippedFormat::Exr => exr_values(bytes, nc, name)?,
@@ -198,6 +264,7 @@ impl Shipped {
         let raw = &raw[self.offset..want];
         let (nx, ny) = (dims[0], dims[1]);
         let mut values = vec![0.0; texels * nc];
+        let mut rounding = vec![0.0; texels * nc];
         for t in 0..texels {
             let (x, y, z) = (t % nx, (t / nx) % ny, t / (nx * ny));
             // where texel (x, y, z) sits in the file
@@ -215,27 +282,355 @@ impl Shipped {
                         i + self.offset
                     ));
                 }
-                values[t * nc + c] = match self.decode.unwrap_or(Decode::Linear) {
-                    Decode::Linear => v,
-                    Decode::Srgb => srgb_to_linear(v),
-                };
+                let (value, r) = self.decoded(v, kinds[c]);
+                values[t * nc + c] = value;
+                rounding[t * nc + c] = r;
             }
         }
         Ok(ShippedTable {
             channels: self.channels.clone(),
             values,
-            step,
+            step: kinds.iter().map(|k| k.step()).fold(0.0, f64::max),
+            rounding,
+            storage: storage_text(&kinds, self.decode == Some(Decode::Srgb)),
+            present: None,
         })
+    }
+
+    /// A stored number `v` decoded (sRGB or linear), and the decoded value's rounding by the
+    /// storage `kind`.
+    fn decoded(&self, v: f64, kind: NumberKind) -> (f64, f64) {
+        match self.decode.unwrap_or(Decode::Linear) {
+            Decode::Linear => (v, kind.rounding(v)),
+            Decode::Srgb => {
+                // half a step of the stored number either way, through the transfer function
+                let h = kind.rounding(v);
+                let value = srgb_to_linear(v);
+                let up = srgb_to_linear((v + h).min(1.0)) - value;
+                let down = value - srgb_to_linear((v - h).max(0.0));
+                (value, up.max(down))
+            }
+        }
+    }
+
+    /// The quoted texels of a quotes file whose marker line lists `columns`: index columns
+    /// `x`, `y`, `z` (the file's array indices: `y` counts the file's rows, which `flip_y`
+    /// maps to the table's) and one value column per compared channel, named as the preset
+    /// spells the file's channels.
+    fn read_quotes(
+        &self,
+        bytes: &[u8],
+        columns: &[String],
+        dims: [usize; 3],
+        name: &str,
+    ) -> Result<ShippedTable, String> {
+        let text = std::str::from_utf8(bytes)
+            .map_err(|_| format!("{name}: a quotes file is text; this one is not UTF-8"))?;
+        let nc = self.channels.len();
+        let spelled = if self.spelled.is_empty() {
+            &self.channels
+        } else {
+            &self.spelled
+        };
+        // what each column is: an axis index (0, 1, 2 for x, y, z) or a file channel
+        enum Col {
+            Index(usize),
+            Channel(usize),
+        }
+        let mut cols = Vec::new();
+        for c in columns {
+            let col = match c.as_str() {
+                "x" => Col::Index(0),
+                "y" => Col::Index(1),
+                "z" => Col::Index(2),
+                _ => Col::Channel(spelled.iter().position(|s| s == c).ok_or_else(|| {
+                    format!(
+                        "{name}: the quotes' column {c:?} is neither an index (x, y, z) nor a channel of the table as the preset names them ({})",
+                        spelled.join(", ")
+                    )
+                })?),
+            };
+            cols.push(col);
+        }
+        for (k, d) in dims.iter().enumerate() {
+            if *d > 1 && !cols.iter().any(|c| matches!(c, Col::Index(i) if *i == k)) {
+                return Err(format!(
+                    "{name}: the quotes' columns ({}) lack the index {} of an axis of {d} texels",
+                    columns.join(" "),
+                    ["x", "y", "z"][k]
+                ));
+            }
+        }
+        let quoted: Vec<usize> = cols
+            .iter()
+            .filter_map(|c| match c {
+                Col::Channel(i) => Some(*i),
+                Col::Index(_) => None,
+            })
+            .collect();
+        for (c, ch) in self.channels.iter().enumerate() {
+            if ch != "-" && !quoted.contains(&c) {
+                return Err(format!(
+                    "{name}: the quotes have no column for the table's channel {:?}",
+                    spelled[c]
+                ));
+            }
+        }
+        let texels = dims[0] * dims[1] * dims[2];
+        let mut values = vec![0.0; texels * nc];
+        let mut rounding = vec![0.0; texels * nc];
+        let mut present = vec![false; texels];
+        let mut decimals = 0u32;
+        let mut count = 0usize;
+        for (ln, line) in text.lines().enumerate() {
+            let line = line.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let toks: Vec<&str> = line.split_whitespace().collect();
+            if toks.len() != cols.len() {
+                return Err(format!(
+                    "{name}, line {}: {} numbers where the quotes' columns ({}) are {}",
+                    ln + 1,
+                    toks.len(),
+                    columns.join(" "),
+                    cols.len()
+                ));
+            }
+            let mut idx = [0usize; 3];
+            let mut row = vec![0.0; nc];
+            let mut row_decimals = vec![0u32; nc];
+            for (tok, col) in toks.iter().zip(&cols) {
+                match col {
+                    Col::Index(k) => {
+                        idx[*k] = tok.parse::<usize>().ok().filter(|i| *i < dims[*k]).ok_or_else(|| {
+                            format!(
+                                "{name}, line {}: index {} = {tok:?} is not a texel index of the table (0 to {})",
+                                ln + 1,
+                                ["x", "y", "z"][*k],
+                                dims[*k] - 1
+                            )
+                        })?;
+                    }
+                    Col::Channel(c) => {
+                        row[*c] = parse_number(tok, ShippedValues::Float).ok_or_else(|| {
+                            format!("{name}, line {}: {tok:?} is not a decimal number", ln + 1)
+                        })?;
+                        row_decimals[*c] = printed_decimals(tok);
+                    }
+                }
+            }
+            if self.flip_y {
+                idx[1] = dims[1] - 1 - idx[1];
+            }
+            let t = (idx[2] * dims[1] + idx[1]) * dims[0] + idx[0];
+            if present[t] {
+                return Err(format!(
+                    "{name}, line {}: texel x = {}, y = {}, z = {} is quoted twice",
+                    ln + 1,
+                    idx[0],
+                    idx[1],
+                    idx[2]
+                ));
+            }
+            present[t] = true;
+            count += 1;
+            for c in 0..nc {
+                values[t * nc + c] = row[c];
+                decimals = decimals.max(row_decimals[c]);
+            }
+        }
+        if count == 0 {
+            return Err(format!("{name}: a quotes file without a quoted texel"));
+        }
+        let kind = NumberKind::Printed(decimals);
+        for t in (0..texels).filter(|t| present[*t]) {
+            for c in 0..nc {
+                rounding[t * nc + c] = kind.rounding(values[t * nc + c]);
+            }
+        }
+        Ok(ShippedTable {
+            channels: self.channels.clone(),
+            values,
+            step: 0.0,
+            rounding,
+            storage: format!("{}, {count} of {texels} texels quoted", kind.text()),
+            present: Some(present),
+        })
+    }
+
+    /// What the preset reads, for messages about a file that is not it: `a text file holding
+    /// the array table_ggx_E of decimal numbers (Cycles' intern/cycles/scene/shader.tables)`.
+    pub fn expects(&self, engine: Option<&str>) -> String {
+        let what = match self.format {
+            ShippedFormat::Text => {
+                let numbers = match self.values.unwrap_or(ShippedValues::Float) {
+                    ShippedValues::Float => "decimal numbers",
+                    ShippedValues::HalfBits => "half-float bit patterns",
+                    ShippedValues::Unorm8 => "8-bit integers",
+                    ShippedValues::Unorm16 => "16-bit integers",
+                };
+                match &self.symbol {
+                    Some(s) => format!("a text file holding the array {s} of {numbers}"),
+                    None => format!("a text file of {numbers}"),
+                }
+            }
+            ShippedFormat::Png => format!("a {}-channel PNG", self.channels.len()),
+            ShippedFormat::Exr => format!("an OpenEXR file of {} channels", self.channels.len()),
+        };
+        match (&self.file, engine) {
+            (Some(f), Some(e)) => format!("{what} ({e}'s {f}, or a brdfbake quotes file of it)"),
+            (Some(f), None) => format!("{what} ({f}, or a brdfbake quotes file of it)"),
+            (None, _) => what,
+        }
     }
 }
 
-impl ShippedValues {
+/// The marker line of a quotes file: `# brdfbake-quotes: z y x T R` names the columns of
+/// every line that follows (texel indices x, y, z as the engine's array counts them, then
+/// the channels' values as the preset names them). Such a file quotes some texels of a table
+/// whose licence keeps the whole out of the repository (EEVEE's, GPL); `compare` judges the
+/// quoted texels.
+pub const QUOTES_MARKER: &str = "# brdfbake-quotes:";
+
+/// The columns a quotes file's marker line names, or `None` for any other file.
+fn quotes_columns(bytes: &[u8]) -> Option<Vec<String>> {
+    // (the marker sits in the comment header, within the first lines)
+    let head = &bytes[..bytes.len().min(1 << 16)];
+    let text = std::str::from_utf8(head).ok().or_else(|| {
+        // a multi-byte character cut at the end of the head
+        std::str::from_utf8(&head[..head.len().saturating_sub(3)]).ok()
+    })?;
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix(QUOTES_MARKER))
+        .map(|cols| cols.split_whitespace().map(String::from).collect())
+}
+
+/// How a shipped file stores its numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum NumberKind {
+    /// Decimal numbers printed with at most this many decimals (`%f`: 6), read as f32.
+    Printed(u32),
+    Half,
+    F32,
+    /// Normalized integers, value = n / max.
+    Unorm(f64),
+}
+
+impl NumberKind {
+    /// Half the spacing of the numbers this storage holds, at `v` (in stored units: the
+    /// code's value n / max for UNORM).
+    fn rounding(self, v: f64) -> f64 {
+        match self {
+            NumberKind::Printed(d) => (0.5 * 10f64.powi(-(d as i32))).max(half_ulp(v, 24, -126)),
+            NumberKind::Half => half_ulp(v, 11, -14),
+            NumberKind::F32 => half_ulp(v, 24, -126),
+            NumberKind::Unorm(max) => 0.5 / max,
+        }
+    }
+
     fn step(self) -> f64 {
         match self {
-            ShippedValues::Float => 0.0,
-            ShippedValues::HalfBits => 2f64.powi(-11),
-            ShippedValues::Unorm8 => 1.0 / 255.0,
-            ShippedValues::Unorm16 => 1.0 / 65535.0,
+            NumberKind::Printed(_) | NumberKind::F32 => 0.0,
+            NumberKind::Half => 2f64.powi(-11),
+            NumberKind::Unorm(max) => 1.0 / max,
+        }
+    }
+
+    fn text(self) -> String {
+        match self {
+            NumberKind::Printed(d) if d >= 9 => "f32 printed in full".into(),
+            NumberKind::Printed(d) => format!("{d} decimals"),
+            NumberKind::Half => "f16".into(),
+            NumberKind::F32 => "f32".into(),
+            NumberKind::Unorm(max) => format!("{}-bit UNORM", (max + 1.0).log2().round()),
+        }
+    }
+}
+
+/// Half the spacing of binary floating-point numbers of `p` significant bits (24: f32, 11:
+/// f16) at `v`, whose normal range starts at 2^`emin`.
+fn half_ulp(v: f64, p: i32, emin: i32) -> f64 {
+    let a = v.abs();
+    let e = if a > 0.0 {
+        a.log2().floor() as i32
+    } else {
+        emin
+    }
+    .max(emin);
+    2f64.powi(e - p)
+}
+
+/// The storage of a file whose channels are stored as `kinds`, for people.
+fn storage_text(kinds: &[NumberKind], srgb: bool) -> String {
+    let mut k: Vec<String> = kinds.iter().map(|k| k.text()).collect();
+    k.dedup();
+    let mut s = k.join(" and ");
+    if srgb {
+        s.push_str(", sRGB-encoded");
+    }
+    s
+}
+
+/// How many decimals a printed number carries (`0.500624f`: 6; `2.5e-3`: 4; `1`: 0).
+fn printed_decimals(tok: &str) -> u32 {
+    let t = tok.trim_end_matches(['f', 'F']);
+    let (m, e) = match t.find(['e', 'E']) {
+        Some(i) => (&t[..i], t[i + 1..].parse::<i32>().unwrap_or(0)),
+        None => (t, 0),
+    };
+    let frac = m.split_once('.').map_or(0, |(_, f)| f.len() as i32);
+    (frac - e).max(0) as u32
+}
+
+/// The file's kind, for a message about a file that is not what a preset reads: `a PNG
+/// image`, `Cycles' shader.tables`, `a brdfbake sidecar`.
+pub fn looks_like(bytes: &[u8]) -> String {
+    const MAGIC: [(&[u8], &str); 5] = [
+        (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+        (b"\x76\x2f\x31\x01", "an OpenEXR image"),
+        (b"\xabKTX 20\xbb", "a KTX2 texture"),
+        (b"\xabKTX 11\xbb", "a KTX 1 texture"),
+        (b"DDS ", "a DDS texture"),
+    ];
+    for (m, what) in MAGIC {
+        if bytes.starts_with(m) {
+            return what.into();
+        }
+    }
+    let Ok(text) = std::str::from_utf8(&bytes[..bytes.len().min(1 << 20)]) else {
+        return format!("a binary file of {} bytes", bytes.len());
+    };
+    const TEXTS: [(&str, &str); 9] = [
+        (QUOTES_MARKER, "a brdfbake quotes file"),
+        ("brdfbake.lut/", "a brdfbake sidecar (JSON)"),
+        ("brdfbake.preset/", "a brdfbake preset (JSON)"),
+        ("table_ggx_E", "Cycles' shader.tables"),
+        ("DFGLUTData", "three.js' DFGLUTData.js"),
+        ("btdf_split_sum_ggx", "Blender EEVEE's eevee_lut.cc"),
+        (
+            "g_ltc_1",
+            "Heitz's LTC tables (ltc_code's ltc.js or ltc.inc)",
+        ),
+        ("MiniMicrofacetGGX", "BSDL's GGX energy table"),
+        ("ContyKullaSheen", "BSDL's sheen energy table"),
+    ];
+    for (needle, what) in TEXTS {
+        if text.contains(needle) {
+            return what.into();
+        }
+    }
+    format!("a text file of {} bytes", bytes.len())
+}
+
+impl ShippedValues {
+    /// How numbers written this way are stored (printed decimals: `decimals` of them).
+    fn number_kind(self, decimals: u32) -> NumberKind {
+        match self {
+            ShippedValues::Float => NumberKind::Printed(decimals),
+            ShippedValues::HalfBits => NumberKind::Half,
+            ShippedValues::Unorm8 => NumberKind::Unorm(255.0),
+            ShippedValues::Unorm16 => NumberKind::Unorm(65535.0),
         }
     }
 }
@@ -293,6 +688,16 @@ pub fn text_array(
     values: ShippedValues,
     name: &str,
 ) -> Result<Vec<f64>, String> {
+    text_array_with_decimals(text, symbol, values, name).map(|(v, _)| v)
+}
+
+/// [`text_array`], and the most decimals any of its numbers is printed with.
+fn text_array_with_decimals(
+    text: &str,
+    symbol: Option<&str>,
+    values: ShippedValues,
+    name: &str,
+) -> Result<(Vec<f64>, u32), String> {
     let body = strip_comments(text);
     let body: &str = match symbol {
         None => &body,
@@ -332,6 +737,7 @@ pub fn text_array(
         tokens.push(s.to_string());
     }
     let mut out = Vec::new();
+    let mut decimals = 0;
     for (k, tok) in tokens.iter().map(String::as_str).enumerate() {
         let v = parse_number(tok, values).ok_or_else(|| {
             format!(
@@ -345,9 +751,12 @@ pub fn text_array(
                 }
             )
         })?;
+        if values == ShippedValues::Float {
+            decimals = decimals.max(printed_decimals(tok));
+        }
         out.push(v);
     }
-    Ok(out)
+    Ok((out, decimals))
 }
 
 /// The byte offset of `symbol` as a whole word in `text`.
@@ -417,7 +826,7 @@ const MAX_PNG_SIDE: u32 = 16384;
 
 /// The pixels of a PNG as values in [0, 1], channels interleaved, rows as stored (row 0
 /// first); `nc` must be its channel count.
-fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, f64), String> {
+fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<NumberKind>), String> {
     let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
     // (the glTF Sample Viewer's lut_sheen_E.png carries an iCCP chunk whose CRC is wrong;
     // the pixels are intact, and the chunk does not change what they mean here)
@@ -468,22 +877,22 @@ fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, f64), St
         .next_frame(&mut buf)
         .map_err(|e| format!("{name}: damaged PNG pixel data: {e}"))?;
     let buf = &buf[..frame.buffer_size()];
-    let (values, step) = if depth == 8 {
-        (buf.iter().map(|&b| b as f64 / 255.0).collect(), 1.0 / 255.0)
+    let (values, max) = if depth == 8 {
+        (buf.iter().map(|&b| b as f64 / 255.0).collect(), 255.0)
     } else {
         (
             buf.chunks_exact(2)
                 .map(|b| u16::from_be_bytes([b[0], b[1]]) as f64 / 65535.0)
                 .collect(),
-            1.0 / 65535.0,
+            65535.0,
         )
     };
-    Ok((values, step))
+    Ok((values, vec![NumberKind::Unorm(max); nc]))
 }
 
 /// The pixels of an EXR file's first layer, channels in the file's order, rows from the top
 /// of its data window (row 0 first).
-fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, f64), String> {
+fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, Vec<NumberKind>), String> {
     use exr::prelude::*;
     let image = read()
         .no_deep_data()
@@ -508,21 +917,27 @@ fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<(Vec<f64>, f64), St
     let size = layer.size;
     let n = size.width() * size.height();
     let mut out = vec![0.0; n * nc];
-    let mut step: f64 = 0.0;
+    let mut kinds = Vec::with_capacity(nc);
     for (c, ch) in list.iter().enumerate() {
         let samples: Vec<f64> = match &ch.sample_data {
             FlatSamples::F16(v) => {
-                step = step.max(2f64.powi(-11));
+                kinds.push(NumberKind::Half);
                 v.iter().map(|x| x.to_f64()).collect()
             }
-            FlatSamples::F32(v) => v.iter().map(|&x| x as f64).collect(),
-            FlatSamples::U32(v) => v.iter().map(|&x| x as f64).collect(),
+            FlatSamples::F32(v) => {
+                kinds.push(NumberKind::F32);
+                v.iter().map(|&x| x as f64).collect()
+            }
+            FlatSamples::U32(v) => {
+                kinds.push(NumberKind::Unorm(1.0));
+                v.iter().map(|&x| x as f64).collect()
+            }
         };
         for (i, s) in samples.into_iter().enumerate() {
             out[i * nc + c] = s;
         }
     }
-    Ok((out, step))
+    Ok((out, kinds))
 }
 
 #[cfg(test)]
@@ -600,5 +1015,61 @@ mod tests {
             .validate(&["A".into()])
             .unwrap_err()
             .contains("text format only"));
+    }
+
+    /// The rounding of each storage, a quotes file read by its marker whatever the format,
+    /// and files of another kind named.
+    #[test]
+    fn storage_rounding_quotes_and_file_kinds() {
+        assert_eq!(printed_decimals("0.500624f"), 6);
+        assert_eq!(printed_decimals("2.5e-3"), 4);
+        assert_eq!(printed_decimals("1"), 0);
+        let s = shipped(r#"{"format": "text", "symbol": "b", "channels": ["E"]}"#);
+        let t = s
+            .read(b"float b[2] = {0.500000f, 0.25f};", [2, 1, 1], "t")
+            .unwrap();
+        assert_eq!(t.rounding, [5e-7, 5e-7]);
+        assert_eq!(t.storage, "6 decimals");
+        let s = shipped(r#"{"format": "text", "values": "half-bits", "channels": ["E"]}"#);
+        let t = s.read(b"0x3c00 0x3800", [2, 1, 1], "t").unwrap();
+        // half an f16 ulp: 2^-11 at 1, 2^-12 at 0.5
+        assert_eq!(t.rounding, [2f64.powi(-11), 2f64.powi(-12)]);
+        let s = shipped(
+            r#"{"format": "text", "values": "unorm8", "channels": ["E"], "decode": "srgb"}"#,
+        );
+        let t = s.read(b"255 0", [2, 1, 1], "t").unwrap();
+        // sRGB: half a code near 1 is ~2.2x larger in linear; near 0 it is 1/12.92 of it
+        assert!(
+            (t.rounding[0] - 0.5 / 255.0 * 2.2).abs() < 2e-4,
+            "{:?}",
+            t.rounding
+        );
+        assert!((t.rounding[1] - 0.5 / 255.0 / 12.92).abs() < 1e-9);
+
+        let mut s =
+            shipped(r#"{"format": "text", "symbol": "t", "channels": ["R", "G"], "flip_y": true}"#);
+        s.spelled = vec!["T".into(), "R".into()];
+        let q = "# quoted\n# brdfbake-quotes: y x T R\n0 1 0.250000 0.5\n1 0 0.125 1.0\n";
+        let t = s.read(q.as_bytes(), [2, 2, 1], "q").unwrap();
+        // file row 0 is the table's last row (flip_y)
+        assert_eq!(t.present, Some(vec![true, false, false, true]));
+        assert_eq!(&t.values[6..8], [0.25, 0.5]);
+        assert_eq!(&t.values[0..2], [0.125, 1.0]);
+        assert_eq!(t.storage, "6 decimals, 2 of 4 texels quoted");
+        let e = s
+            .read(b"# brdfbake-quotes: y x T\n0 0 1\n", [2, 2, 1], "q")
+            .unwrap_err();
+        assert!(e.contains("no column for the table's channel \"R\""), "{e}");
+        let e = s
+            .read(b"# brdfbake-quotes: y x T R\n0 2 1 1\n", [2, 2, 1], "q")
+            .unwrap_err();
+        assert!(e.contains("line 2") && e.contains("0 to 1"), "{e}");
+
+        assert_eq!(looks_like(b"\x89PNG\r\n\x1a\nrest"), "a PNG image");
+        assert_eq!(
+            looks_like(b"static const float table_ggx_E[1024] = {"),
+            "Cycles' shader.tables"
+        );
+        assert_eq!(looks_like(&[0xff, 0xfe, 0x00]), "a binary file of 3 bytes");
     }
 }

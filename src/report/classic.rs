@@ -4,22 +4,23 @@
 //! by [`crate::laws::reciprocity`] at that parameter (≈ 15k BRDF evaluations, cheap), and
 //! where the table itself says the model reflects more than it receives (E > 1).
 
-use super::{esc, line_plot, Series, PALETTE};
+use super::page::{Page, PALETTE, TABLE_ATTRS};
+use super::svg::{esc, line_plot, Series};
 use crate::laws::reciprocity;
 use crate::table::TableKind;
 use std::fmt::Write;
 
 /// Appends the section if any table is a classic one (nothing otherwise).
-pub fn section(tables: &[super::ReportTable], out: &mut String) {
+pub fn section(tables: &[super::ReportTable], out: &mut Page) {
     let classic: Vec<&super::ReportTable> =
         tables.iter().filter(|t| t.spec.kind.is_classic()).collect();
     if classic.is_empty() {
         return;
     }
+    out.section("Classic models: albedo and the two laws");
     let _ = writeln!(
         out,
-        "<section><h2>Classic models: albedo and the two laws</h2>\
-         <p>E(μ) = ∫ f(l, v)(n·l) dω_l of each classic table at the middle texel of its parameter \
+        "<p>E(μ) = ∫ f(l, v)(n·l) dω_l of each classic table at the middle texel of its parameter \
          axis (anisotropic tables, dashed: the view-azimuth average E_avg at the largest anisotropy \
          of the table). Reciprocity: the largest relative \
          |f(ωi,ωo) − f(ωo,ωi)| over the fixed direction set of <code>brdfbake laws</code>. \
@@ -84,9 +85,12 @@ pub fn section(tables: &[super::ReportTable], out: &mut String) {
         "E",
         &curves,
     ));
+    let _ = writeln!(out, "</div>");
+    out.table("Classic models: reciprocity and energy", TABLE_ATTRS);
     let _ = writeln!(
         out,
-        "</div><table><tr><th>table</th><th>model</th><th>reciprocity</th><th>max relative violation</th>\
-         <th>largest E in the table</th></tr>{rows}</table></section>"
+        "<tr><th>table</th><th>model</th><th>reciprocity</th><th>max relative violation</th>\
+         <th>largest E in the table</th></tr>{rows}</table>"
     );
+    out.end_section();
 }

@@ -341,111 +341,14 @@ pub fn plot(kind: Kind, rows: &[Row]) -> String {
         dashed,
     })
     .collect::<Vec<_>>();
-    loglog(&format!("convergence: {}", kind.name()), &series)
-}
-
-/// An SVG plot of series given as (log₁₀ x, log₁₀ y) points: whole decades on both axes
-/// (ticks labelled 10^k), a marker at every point (a quadrature whose evaluation count
-/// does not change with the tolerance is a single spot), a legend below.
-fn loglog(title: &str, series: &[Series]) -> String {
-    let pts = || series.iter().flat_map(|s| s.points.iter().copied());
-    let lo_hi = |f: fn((f64, f64)) -> f64| {
-        let (lo, hi) = pts()
-            .map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                (a.min(v), b.max(v))
-            });
-        if lo.is_finite() && hi.is_finite() {
-            (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
-        } else {
-            (0.0, 1.0)
-        }
-    };
-    let (x0, x1) = lo_hi(|p| p.0);
-    let (y0, y1) = lo_hi(|p| p.1);
-    let (ml, mt, pw, ph) = (52.0, 28.0, 300.0, 200.0);
-    let legend_h = 14.0 * series.len() as f64;
-    let (w, h) = (ml + pw + 20.0, mt + ph + 44.0 + legend_h);
-    let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
-    let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" role=\"img\"><title>{t}</title>\
-         <text x=\"4\" y=\"16\" font-weight=\"bold\">{t}</text>\
-         <rect x=\"{ml}\" y=\"{mt}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#222\"/>",
-        t = super::esc(title)
-    );
-    // at most ~8 labelled decades per axis
-    let step = |span: f64| (span / 8.0).ceil().max(1.0) as usize;
-    for k in (x0 as i64..=x1 as i64).step_by(step(x1 - x0)) {
-        let x = sx(k as f64);
-        let _ = write!(
-            s,
-            "<line x1=\"{x:.1}\" y1=\"{mt}\" x2=\"{x:.1}\" y2=\"{b}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{ty}\" text-anchor=\"middle\">1e{k}</text>",
-            b = mt + ph,
-            ty = mt + ph + 14.0
-        );
-    }
-    for k in (y0 as i64..=y1 as i64).step_by(step(y1 - y0)) {
-        let y = sy(k as f64);
-        let _ = write!(
-            s,
-            "<line x1=\"{ml}\" y1=\"{y:.1}\" x2=\"{r}\" y2=\"{y:.1}\" stroke=\"#ddd\"/><text x=\"{l}\" y=\"{y4:.1}\" text-anchor=\"end\">1e{k}</text>",
-            r = ml + pw,
-            l = ml - 4.0,
-            y4 = y + 4.0
-        );
-    }
-    let _ = write!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">integrand evaluations</text>\
-         <text transform=\"translate(12 {}) rotate(-90)\" text-anchor=\"middle\">|error|</text>",
-        ml + pw / 2.0,
-        mt + ph + 30.0,
-        mt + ph / 2.0
-    );
-    for (k, se) in series.iter().enumerate() {
-        let dash = if se.dashed {
-            " stroke-dasharray=\"5 3\""
-        } else {
-            ""
-        };
-        let d: Vec<String> = se
-            .points
-            .iter()
-            .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
-            .collect();
-        if !d.is_empty() {
-            let _ = write!(
-                s,
-                "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.6\"{dash} points=\"{}\"/>",
-                se.colour,
-                d.join(" ")
-            );
-        }
-        for &(x, y) in &se.points {
-            let _ = write!(
-                s,
-                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"2.5\" fill=\"{}\"/>",
-                sx(x),
-                sy(y),
-                se.colour
-            );
-        }
-        let ly = mt + ph + 44.0 + 14.0 * k as f64;
-        let _ = write!(
-            s,
-            "<line x1=\"{ml}\" y1=\"{a}\" x2=\"{b}\" y2=\"{a}\" stroke=\"{c}\" stroke-width=\"2\"{dash}/><text x=\"{t}\" y=\"{ly}\">{l}</text>",
-            a = ly - 4.0,
-            b = ml + 24.0,
-            c = se.colour,
-            t = ml + 30.0,
-            l = super::esc(&se.label)
-        );
-    }
-    s.push_str("</svg>\n");
-    s
+    // (log₁₀ x, log₁₀ y) points: whole decades on both axes, a marker at every point
+    super::svg::plot(
+        &format!("convergence: {}", kind.name()),
+        "integrand evaluations",
+        "|error|",
+        &series,
+        super::svg::Scale::LogLog,
+    )
 }
 
 /// Tolerances and sample counts the report uses (kept small: the report is rendered in
@@ -464,11 +367,11 @@ pub fn report_tols(kind: Kind) -> &'static [f64] {
 pub const REPORT_COUNTS: [u64; 6] = [16, 64, 256, 1024, 4096, 16384];
 
 /// The report's convergence section: one log-log plot per kind.
-pub fn section(out: &mut String) {
+pub fn section(out: &mut super::Page) {
+    out.section("Convergence: brdfbake's quadrature vs Monte Carlo");
     let _ = writeln!(
         out,
-        "<section><h2>Convergence: brdfbake's quadrature vs Monte Carlo</h2>\
-         <p>Error against integrand evaluations for each integral kind, at one point each: \
+        "<p>Error against integrand evaluations for each integral kind, at one point each: \
          brdfbake's quadrature (the methods its tables use) over a sweep of tolerances ({}), and \
          importance-sampled Monte Carlo on Hammersley points ({} samples), unbiased (÷ N) and \
          in the biased variant that divides by the number of valid samples (its error stops \
@@ -503,7 +406,8 @@ pub fn section(out: &mut String) {
         let rows = study(k, &r, report_tols(k), &REPORT_COUNTS);
         out.push_str(&plot(k, &rows));
     }
-    let _ = writeln!(out, "</div></section>");
+    let _ = writeln!(out, "</div>");
+    out.end_section();
 }
 
 #[cfg(test)]

@@ -2,7 +2,9 @@
 //! per shipped table, where it comes from, its error and brdfbake's against exact values per
 //! channel, what the comparison found, and a heatmap of the shipped table's error.
 
-use super::svg::{esc, heatmap};
+use super::heatmap::heatmap;
+use super::page::{Page, TABLE_ATTRS};
+use super::svg::esc;
 use crate::engines::Comparison;
 use crate::numfmt::num;
 use std::fmt::Write;
@@ -14,20 +16,21 @@ pub struct EngineComparison {
 }
 
 /// Appends the section (nothing when there is no comparison).
-pub fn section(items: &[EngineComparison], out: &mut String) {
+pub fn section(items: &[EngineComparison], out: &mut Page) {
     if items.is_empty() {
         return;
     }
+    out.section("Engine tables");
     let _ = writeln!(
         out,
-        "<section><h2>Engine tables</h2><p>Each shipped table against exact values at its own \
+        "<p>Each shipped table against exact values at its own \
          texels (brdfbake's bake of the engine preset at a 100× tighter tolerance), next to \
          brdfbake's table of the same preset. The heatmaps show the shipped table's error \
          (shipped − exact) per channel over its stored axes.</p>"
     );
     for e in items {
         let c = &e.comparison;
-        let _ = writeln!(out, "<h3>{} / {}</h3>", esc(&c.preset), esc(&c.table));
+        out.heading(&format!("{} / {}", c.preset, c.table));
         if let Some(s) = &e.source {
             let _ = writeln!(
                 out,
@@ -43,16 +46,22 @@ pub fn section(items: &[EngineComparison], out: &mut String) {
         }
         let _ = writeln!(
             out,
-            "<p>File <code>{}</code>, {} texels.</p>\
-             <table border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\">\
-             <tr><th>channel</th><th>shipped max |Δ|</th><th>at</th><th>shipped mean |Δ|</th>\
-             <th>brdfbake max |Δ|</th><th>brdfbake as stored max |Δ|</th></tr>",
+            "<p>File <code>{}</code>, {} texels.</p>",
             esc(&c.file),
             c.dims
                 .iter()
                 .map(|d| d.to_string())
                 .collect::<Vec<_>>()
                 .join(" × ")
+        );
+        out.table(
+            &format!("{} / {}: errors per channel", c.preset, c.table),
+            TABLE_ATTRS,
+        );
+        let _ = writeln!(
+            out,
+            "<tr><th>channel</th><th>shipped max |Δ|</th><th>at</th><th>shipped mean |Δ|</th>\
+             <th>brdfbake max |Δ|</th><th>brdfbake as stored max |Δ|</th></tr>"
         );
         for ch in &c.channels {
             let at = ch
@@ -91,5 +100,5 @@ pub fn section(items: &[EngineComparison], out: &mut String) {
         }
         let _ = writeln!(out, "</div>");
     }
-    let _ = writeln!(out, "</section>");
+    out.end_section();
 }

@@ -4,7 +4,9 @@
 //! small α), with their median, 99th percentile and maximum, and a sentence on what each
 //! measures.
 
-use super::svg::{esc, heatmap};
+use super::heatmap::heatmap;
+use super::page::{Page, TABLE_ATTRS};
+use super::svg::esc;
 use crate::lut::Lut;
 use std::fmt::Write;
 
@@ -47,16 +49,19 @@ fn quantiles(mut v: Vec<f64>) -> (f64, f64, f64) {
 const LOG_FLOOR: f64 = 1e-9;
 
 /// The section for table `name`'s fit error `fit` (texels as the table's, 4 channels).
-pub fn section(name: &str, fit: &Lut, out: &mut String) {
+pub fn section(name: &str, fit: &Lut, out: &mut Page) {
+    out.heading(&format!("Fit error of the LTC — {name}"));
     let _ = writeln!(
         out,
-        "<h3>Fit error of the LTC — {}</h3><p>Per texel, the error of the fitted LTC against \
+        "<p>Per texel, the error of the fitted LTC against \
          the BRDF that the sidecar records in <code>ltc.fit_error</code> (<code>brdfbake verify</code> \
          checks it against a refit), on a log<sub>10</sub> scale; <code>brdfbake probe FILE --at … \
-         --polygon …</code> shows the lit value of any polygon light against the exact one.</p>\
-         <table border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\">\
-         <tr><th>error</th><th>median</th><th>99th percentile</th><th>max</th><th>what it measures</th></tr>",
-        esc(name)
+         --polygon …</code> shows the lit value of any polygon light against the exact one.</p>"
+    );
+    out.table(&format!("{name}: fit error quantiles"), TABLE_ATTRS);
+    let _ = writeln!(
+        out,
+        "<tr><th>error</th><th>median</th><th>99th percentile</th><th>max</th><th>what it measures</th></tr>"
     );
     for (c, ch) in fit.channels.iter().enumerate() {
         let (m, p, x) = quantiles(channel_values(fit, c));

@@ -1,20 +1,29 @@
-//! A self-contained HTML report of baked tables: inline SVG only (no scripts, no network).
-//! Per table: a heatmap per channel (labelled axes, colour bar), and where they apply E(μ)
-//! curves for several roughness values, the energy loss 1 − E, E_avg against roughness and
-//! the comparison with Karis' mobile `EnvBRDFApprox` (2014).
+//! A self-contained HTML report of baked tables: inline SVG only (no scripts, no network),
+//! a table of contents linking every section, heading and table. Per table: a heatmap of
+//! every texel per channel (labelled axes, a colour bar from the true minimum to the true
+//! maximum), and where they apply E(μ) curves for several roughness values, the energy loss
+//! 1 − E, E_avg against roughness and the comparison with Karis' mobile `EnvBRDFApprox`
+//! (2014).
 
 pub mod classic;
 pub mod convergence;
 pub mod engines;
 pub mod filament;
+mod heatmap;
+pub mod layout;
 pub mod ltc;
+mod page;
 mod svg;
 
 use crate::lut::{Lut, Quantity};
 use crate::model::NdfKind;
 use crate::table::{DfgLayout, TableKind, TableSpec};
+pub use heatmap::heatmap;
+pub use layout::layout_problems;
+pub use page::Page;
+use page::{PALETTE, TABLE_ATTRS};
 use std::fmt::Write;
-pub use svg::{esc, heatmap, line_plot, Series};
+pub use svg::{esc, line_plot, Series};
 
 /// One baked table to show.
 pub struct ReportTable {
@@ -64,18 +73,13 @@ fn roughness_picks(spec: &TableSpec) -> Vec<f64> {
     (0..5).map(|i| lo + (hi - lo) * i as f64 / 4.0).collect()
 }
 
-const PALETTE: [&str; 6] = [
-    "#440154", "#3b528b", "#21918c", "#5ec962", "#c8a900", "#d1495b",
-];
-
-fn table_section(t: &ReportTable, out: &mut String) {
+fn table_section(t: &ReportTable, out: &mut Page) {
     let spec = &t.spec;
     let lut = &t.lut;
+    out.section(&format!("{} / {}", t.preset, spec.name));
     let _ = writeln!(
         out,
-        "<section><h2>{} / {}</h2><p><b>{}</b>: {}<br>model: {}<br>axes: {}</p>",
-        esc(&t.preset),
-        esc(&spec.name),
+        "<p><b>{}</b>: {}<br>model: {}<br>axes: {}<br>storage: {}{}</p>",
         spec.kind.name(),
         esc(spec.kind.description()),
         esc(&crate::meta::model_summary(spec)),
@@ -92,7 +96,13 @@ fn table_section(t: &ReportTable, out: &mut String) {
                 a.spacing_note()
             ))
             .collect::<Vec<_>>()
-            .join("; "))
+            .join("; ")),
+        spec.storage.name(),
+        if spec.storage == crate::table::Storage::F32 {
+            ""
+        } else {
+            " (the heatmaps show the computed f32 texels; the file rounds them to this)"
+        }
     );
     let _ = writeln!(out, "<div class=\"row\">");
     for (c, ch) in lut.channels.iter().enumerate() {
@@ -208,10 +218,10 @@ fn table_section(t: &ReportTable, out: &mut String) {
     if spec.kind == TableKind::Dfg && spec.model.ndf == Some(NdfKind::Ggx) {
         karis_section(t, out);
     }
-    let _ = writeln!(out, "</section>");
+    out.end_section();
 }
 
-fn karis_section(t: &ReportTable, out: &mut String) {
+fn karis_section(t: &ReportTable, out: &mut Page) {
     let spec = &t.spec;
     let lut = &t.lut;
     let ra = lut.axes.last().expect("axis");
@@ -286,10 +296,13 @@ fn karis_section(t: &ReportTable, out: &mut String) {
         .into_iter()
         .flat_map(|(a, b, c, d)| [(a, c), (b, d)])
         .unzip();
+    out.heading(&format!(
+        "{}: comparison with Karis' EnvBRDFApprox (mobile, 2014)",
+        spec.name
+    ));
     let _ = writeln!(
         out,
-        "<h3>Comparison with Karis' EnvBRDFApprox (mobile, 2014)</h3>\
-         <p>Solid: this table; dashed: the analytic fit. Max |difference| over the plotted curves: \
+        "<p>Solid: this table; dashed: the analytic fit. Max |difference| over the plotted curves: \
          A {max_a:.4}, B {max_b:.4}. The fit was made to Unreal's table (Schlick-Smith G with \
          k = alpha/2, perceptual roughness); where this table's model differs, so do the curves.</p>\
          <div class=\"row\">"
@@ -300,12 +313,12 @@ fn karis_section(t: &ReportTable, out: &mut String) {
 }
 
 /// The section comparing a shipped Filament DFG table (`label`: the file's name).
-fn filament_section(label: &str, c: &filament::Comparison, out: &mut String) {
+fn filament_section(label: &str, c: &filament::Comparison, out: &mut Page) {
     let names = ["R = ∫Fc f cos", "G = ∫ f cos", "B = cloth ∫ D V cos"];
+    out.section("Comparison with Filament's shipped DFG table");
     let _ = writeln!(
         out,
-        "<section><h2>Comparison with Filament's shipped DFG table</h2>\
-         <p>File <code>{}</code>: {n}×{n}, {} channels, f16. Exact values: GGX, \
+        "<p>File <code>{}</code>: {n}×{n}, {} channels, f16. Exact values: GGX, \
          height-correlated Smith, F = 1 (and Charlie/Ashikhmin cloth), computed by brdfbake at \
          tolerance 1e-7. <b>As sampled</b>: each texel against the exact value where Filament's \
          shader reads it (n·v = (x + 0.5)/N, perceptual roughness = (y + 0.5)/N) — what a \
@@ -317,10 +330,13 @@ fn filament_section(label: &str, c: &filament::Comparison, out: &mut String) {
         c.channels,
         n = c.size
     );
+    out.table(
+        &format!("{label}: shipped − exact per channel"),
+        TABLE_ATTRS,
+    );
     let _ = writeln!(
         out,
-        "<table border=\"1\" cellpadding=\"4\" style=\"border-collapse:collapse\">\
-         <tr><th>channel</th><th>max |Δ| as sampled</th><th>at (n·v, r)</th>\
+        "<tr><th>channel</th><th>max |Δ| as sampled</th><th>at (n·v, r)</th>\
          <th>mean |Δ| as sampled</th><th>max |Δ| as computed</th><th>at (n·v, r)</th>\
          <th>mean |Δ| as computed</th><th>f16 rounding</th></tr>"
     );
@@ -350,7 +366,8 @@ fn filament_section(label: &str, c: &filament::Comparison, out: &mut String) {
             &format!("shipped − exact, as sampled — {}", ch.name),
         ));
     }
-    let _ = writeln!(out, "</div></section>");
+    let _ = writeln!(out, "</div>");
+    out.end_section();
 }
 
 /// The whole page; `filament`: a shipped Filament DFG table's name and its comparison;
@@ -360,22 +377,27 @@ pub fn html(
     filament: Option<(&str, &filament::Comparison)>,
     engines: &[engines::EngineComparison],
 ) -> String {
-    let mut out = String::new();
-    let _ = write!(
-        out,
+    let head = format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width\">\
          <title>brdfbake report</title><style>\
          body{{font-family:sans-serif;margin:1.5em;color:#222;background:#fff}}\
          section{{border-top:1px solid #ccc;margin-top:1.5em}}\
-         .row{{display:flex;flex-wrap:wrap;gap:1em}}\
-         svg{{background:#fff}} svg text{{font-family:sans-serif;font-size:11px;fill:#222}}\
+         .row{{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}}\
+         caption{{text-align:left;font-weight:bold;padding:0.3em 0}}\
+         td{{vertical-align:top}} td:not(:last-child){{white-space:nowrap}}\
+         svg{{background:#fff;flex:none}} svg text{{font-family:sans-serif;fill:#222}}\
          </style></head><body>\n<h1>brdfbake report</h1>\n<p>brdfbake {} — {} table(s). \
-         Heatmaps show each channel over the table's axes (axis 0 to the right, axis 1 upwards; \
-         3D tables: the middle slice). Values are the baked texels.</p>\n",
+         Heatmaps draw every texel of a channel, one image pixel per texel (zoom in to see \
+         each), over the table's axes: axis 0 to the right, axis 1 upwards, a 3D table one \
+         panel per slice. Their colour bar runs from the channel's minimum to its maximum over \
+         the whole table, both printed. A table too large to draw whole says on its chart \
+         which texels are drawn. Values are the baked texels (f32, before a file's storage \
+         rounds them).</p>\n",
         crate::meta::VERSION,
         tables.len()
     );
+    let mut out = Page::new();
     if let Some((label, c)) = filament {
         filament_section(label, c, &mut out);
     }
@@ -386,7 +408,7 @@ pub fn html(
     classic::section(tables, &mut out);
     convergence::section(&mut out);
     out.push_str("</body></html>\n");
-    out
+    out.finish(&head)
 }
 
 #[cfg(test)]

@@ -1,15 +1,11 @@
-//! Inline SVG charts: heatmaps with axes and a colour bar, line plots with a legend.
+//! Inline SVG charts: line plots with round-numbered ticks and a legend, the colour map, and
+//! the number formats the charts print. Heatmaps are in [`super::heatmap`]; where text goes,
+//! in [`super::layout`].
 
-use crate::lut::Lut;
+use super::layout::{text_width, wrap, Anchor, Canvas, Label, FONT, LINE};
 use std::fmt::Write;
 
-/// Escapes text for HTML.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
+pub use super::layout::esc;
 
 /// A line of a plot.
 pub struct Series {
@@ -32,8 +28,8 @@ const VIRIDIS: [[f64; 3]; 9] = [
     [253.0, 231.0, 37.0],
 ];
 
-/// The colour of `t` in [0, 1].
-pub fn colour(t: f64) -> String {
+/// The colour of `t` in [0, 1] (a non-finite `t` gets the lowest colour), 8-bit RGB.
+pub fn colour_rgb(t: f64) -> [u8; 3] {
     let t = if t.is_finite() {
         t.clamp(0.0, 1.0)
     } else {
@@ -42,13 +38,16 @@ pub fn colour(t: f64) -> String {
     let x = t * 8.0;
     let i = (x.floor() as usize).min(7);
     let f = x - i as f64;
-    let c: Vec<u8> = (0..3)
-        .map(|k| (VIRIDIS[i][k] * (1.0 - f) + VIRIDIS[i + 1][k] * f).round() as u8)
-        .collect();
-    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+    let mut c = [0u8; 3];
+    for (k, v) in c.iter_mut().enumerate() {
+        *v = (VIRIDIS[i][k] * (1.0 - f) + VIRIDIS[i + 1][k] * f).round() as u8;
+    }
+    c
 }
 
-fn fmt_num(v: f64) -> String {
+/// A coordinate for a label: at most 4 decimals, or 3 significant digits in scientific
+/// notation when tiny or huge.
+pub fn fmt_num(v: f64) -> String {
     if v == 0.0 {
         "0".into()
     } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
@@ -60,245 +59,316 @@ fn fmt_num(v: f64) -> String {
     }
 }
 
-/// A heatmap of channel `c` over axes 0 (right) and 1 (up); a 3D table shows its middle
-/// slice, a 1D table one row. At most 64×64 cells (finer tables are sampled at cell centres
-/// by the GPU-equivalent lookup).
-pub fn heatmap(lut: &Lut, c: usize, title: &str) -> String {
-    let nd = lut.axes.len();
-    let nx = lut.dim(0).min(64);
-    let ny = if nd >= 2 { lut.dim(1).min(64) } else { 1 };
-    let mut vals = vec![0.0f64; nx * ny];
-    let ax = &lut.axes[0];
-    let coord = |a: &crate::lut::Axis, i: usize, n: usize| {
-        if a.size == n {
-            a.coord(i)
-        } else {
-            a.coord(0) + (a.coord(a.size - 1) - a.coord(0)) * (i as f64 + 0.5) / n as f64
-        }
-    };
-    for j in 0..ny {
-        for i in 0..nx {
-            let mut x = vec![coord(ax, i, nx)];
-            if nd >= 2 {
-                x.push(coord(&lut.axes[1], j, ny));
-            }
-            if nd == 3 {
-                let az = &lut.axes[2];
-                x.push(az.coord(az.size / 2));
-            }
-            vals[j * nx + i] = lut.lookup(&x)[c];
-        }
-    }
-    let lo = vals
-        .iter()
-        .cloned()
-        .filter(|v| v.is_finite())
-        .fold(f64::INFINITY, f64::min);
-    let hi = vals
-        .iter()
-        .cloned()
-        .filter(|v| v.is_finite())
-        .fold(f64::NEG_INFINITY, f64::max);
-    let span = if hi > lo { hi - lo } else { 1.0 };
-    let (pw, ph) = (256.0, if ny == 1 { 32.0 } else { 256.0 });
-    let (ml, mt) = (56.0, 28.0);
-    let (w, h) = (ml + pw + 90.0, mt + ph + 48.0);
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" role=\"img\"><title>{t}</title>\
-         <text x=\"{ml}\" y=\"16\" font-weight=\"bold\">{t}</text>",
-        t = esc(title)
-    );
-    let (cw, chh) = (pw / nx as f64, ph / ny as f64);
-    for j in 0..ny {
-        for i in 0..nx {
-            let v = vals[j * nx + i];
-            // axis 1 upwards: row j drawn from the bottom
-            let _ = write!(
-                s,
-                "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
-                ml + i as f64 * cw,
-                mt + ph - (j + 1) as f64 * chh,
-                cw + 0.3,
-                chh + 0.3,
-                colour((v - lo) / span)
-            );
-        }
-    }
-    let _ = write!(s, "<rect x=\"{ml}\" y=\"{mt}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#222\"/>");
-    // axis 0 ticks and label
-    let r0 = [ax.coord(0), ax.coord(ax.size - 1)];
-    for (k, v) in r0.iter().enumerate() {
-        let x = ml + if k == 0 { cw / 2.0 } else { pw - cw / 2.0 };
-        let _ = write!(s, "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"#222\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">{}</text>", mt + ph, mt + ph + 4.0, mt + ph + 16.0, fmt_num(*v));
-    }
-    let _ = write!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} →</text>",
-        ml + pw / 2.0,
-        mt + ph + 34.0,
-        esc(&ax.name)
-    );
-    if nd >= 2 {
-        let ay = &lut.axes[1];
-        for (k, v) in [ay.coord(0), ay.coord(ay.size - 1)].iter().enumerate() {
-            let y = mt + if k == 0 { ph - chh / 2.0 } else { chh / 2.0 };
-            let _ = write!(s, "<line x1=\"{}\" y1=\"{y}\" x2=\"{ml}\" y2=\"{y}\" stroke=\"#222\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", ml - 4.0, ml - 6.0, y + 4.0, fmt_num(*v));
-        }
-        let _ = write!(
-            s,
-            "<text transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\">{} →</text>",
-            mt + ph / 2.0,
-            esc(&ay.name)
-        );
-    }
-    if nd == 3 {
-        let az = &lut.axes[2];
-        let _ = write!(
-            s,
-            "<text x=\"{ml}\" y=\"{}\">slice {} = {}</text>",
-            h - 2.0,
-            esc(&az.name),
-            fmt_num(az.coord(az.size / 2))
-        );
-    }
-    // colour bar
-    let bx = ml + pw + 16.0;
-    for k in 0..32 {
-        let t = k as f64 / 31.0;
-        let _ = write!(
-            s,
-            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"14\" height=\"{:.2}\" fill=\"{}\"/>",
-            mt + ph - (k + 1) as f64 * ph / 32.0,
-            ph / 32.0 + 0.3,
-            colour(t)
-        );
-    }
-    let _ = write!(
-        s,
-        "<rect x=\"{bx}\" y=\"{mt}\" width=\"14\" height=\"{ph}\" fill=\"none\" stroke=\"#222\"/>"
-    );
-    for (y, v) in [(mt + ph, lo), (mt + ph / 2.0, 0.5 * (lo + hi)), (mt, hi)] {
-        let _ = write!(
-            s,
-            "<text x=\"{}\" y=\"{}\">{}</text>",
-            bx + 18.0,
-            y + 4.0,
-            fmt_num(v)
-        );
-    }
-    s.push_str("</svg>\n");
-    s
+/// Ticks of an axis: its drawn range (the data's, widened to whole steps) and labelled
+/// values.
+pub struct Ticks {
+    pub lo: f64,
+    pub hi: f64,
+    pub at: Vec<(f64, String)>,
 }
+
+/// A round step (1, 2 or 5 × 10^k) of at least `raw`.
+fn nice_step(raw: f64) -> f64 {
+    let mag = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw * (1.0 - 1e-9))
+        .unwrap_or(10.0 * mag)
+}
+
+/// The label of tick `v` of an axis whose ticks are `step` apart: as many decimals as the
+/// step needs, scientific when the step is below 1e-4 or the value 1e5 and above.
+fn tick_label(v: f64, step: f64) -> String {
+    if v.abs() < step * 1e-6 {
+        return "0".into();
+    }
+    let es = step.log10().floor() as i32;
+    if v.abs() < 1e5 && es >= -4 {
+        let d = (-es).max(0) as usize;
+        format!("{v:.d$}")
+    } else {
+        let ev = v.abs().log10().floor() as i32;
+        let d = (ev - es).max(0) as usize;
+        format!("{v:.d$e}")
+    }
+}
+
+/// Linear ticks over [lo, hi] at a round step giving at most `intervals` intervals; the
+/// range widens to whole steps.
+pub fn linear_ticks(lo: f64, hi: f64, intervals: usize) -> Ticks {
+    let step = nice_step((hi - lo) / intervals.max(1) as f64);
+    let k0 = (lo / step + 1e-9).floor() as i64;
+    let k1 = (hi / step - 1e-9).ceil() as i64;
+    let at = (k0..=k1)
+        .map(|k| {
+            let v = k as f64 * step;
+            (v, tick_label(v, step))
+        })
+        .collect();
+    Ticks {
+        lo: k0 as f64 * step,
+        hi: k1 as f64 * step,
+        at,
+    }
+}
+
+/// Ticks of a log axis whose coordinates are log₁₀ values: whole decades, labelled 1e{k},
+/// at most ~8 labelled.
+fn decade_ticks(lo: f64, hi: f64) -> Ticks {
+    let (lo, hi) = (lo.floor(), hi.ceil().max(lo.floor() + 1.0));
+    let step = ((hi - lo) / 8.0).ceil().max(1.0) as usize;
+    Ticks {
+        lo,
+        hi,
+        at: (lo as i64..=hi as i64)
+            .step_by(step)
+            .map(|k| (k as f64, format!("1e{k}")))
+            .collect(),
+    }
+}
+
+/// How a plot's coordinates are read.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    /// As they are.
+    Linear,
+    /// Both coordinates are log₁₀ of the quantity: decade ticks labelled 10^k, a marker on
+    /// every point (a method whose cost does not change is a single spot).
+    LogLog,
+}
+
+/// Width and height of a plot's frame, px.
+const PLOT_W: f64 = 300.0;
+const PLOT_H: f64 = 200.0;
 
 /// A line plot with ticks, axis labels and a legend.
 pub fn line_plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
-    let pts = series
-        .iter()
-        .flat_map(|s| s.points.iter())
-        .filter(|p| p.0.is_finite() && p.1.is_finite());
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in pts {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if !x0.is_finite() || !x1.is_finite() {
+    plot(title, xlabel, ylabel, series, Scale::Linear)
+}
+
+/// A plot of `series` on `scale`.
+pub fn plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series], scale: Scale) -> String {
+    let pts = || {
+        series
+            .iter()
+            .flat_map(|s| s.points.iter().copied())
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+    };
+    let range = |f: fn((f64, f64)) -> f64| {
+        pts()
+            .map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            })
+    };
+    let (mut x0, mut x1) = range(|p| p.0);
+    let (mut y0, mut y1) = range(|p| p.1);
+    if !x0.is_finite() {
         (x0, x1) = (0.0, 1.0);
+    }
+    if !y0.is_finite() {
+        (y0, y1) = (0.0, 1.0);
+    }
+    if scale == Scale::Linear {
+        y0 = y0.min(0.0);
     }
     if x1 <= x0 {
         x1 = x0 + 1.0;
     }
-    if !y0.is_finite() || !y1.is_finite() {
-        (y0, y1) = (0.0, 1.0);
-    }
-    y0 = y0.min(0.0);
     if y1 <= y0 {
         y1 = y0 + 1.0;
     }
-    let (ml, mt, pw, ph) = (56.0, 28.0, 300.0, 200.0);
-    let legend_h = 14.0 * series.len() as f64;
-    let (w, h) = (ml + pw + 20.0, mt + ph + 44.0 + legend_h);
-    let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
-    let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" role=\"img\"><title>{t}</title>\
-         <text x=\"4\" y=\"16\" font-weight=\"bold\">{t}</text>\
-         <rect x=\"{ml}\" y=\"{mt}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#222\"/>",
-        t = esc(title)
-    );
-    for k in 0..=4 {
-        let f = k as f64 / 4.0;
-        let (x, y) = (x0 + f * (x1 - x0), y0 + f * (y1 - y0));
-        let _ = write!(
-            s,
-            "<line x1=\"{X}\" y1=\"{mt}\" x2=\"{X}\" y2=\"{B}\" stroke=\"#ddd\"/><text x=\"{X}\" y=\"{T}\" text-anchor=\"middle\">{xl}</text>\
-             <line x1=\"{ml}\" y1=\"{Y}\" x2=\"{R}\" y2=\"{Y}\" stroke=\"#ddd\"/><text x=\"{L}\" y=\"{Y4}\" text-anchor=\"end\">{yl}</text>",
-            X = sx(x),
-            B = mt + ph,
-            T = mt + ph + 14.0,
-            xl = fmt_num(x),
-            Y = sy(y),
-            R = ml + pw,
-            L = ml - 4.0,
-            Y4 = sy(y) + 4.0,
-            yl = fmt_num(y)
-        );
-    }
-    let _ = write!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
-        ml + pw / 2.0,
-        mt + ph + 30.0,
-        esc(xlabel)
-    );
-    let _ = write!(
-        s,
-        "<text transform=\"translate(12 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>",
-        mt + ph / 2.0,
-        esc(ylabel)
-    );
-    for (k, se) in series.iter().enumerate() {
-        let d: Vec<String> = se
-            .points
+    let ticks = |lo: f64, hi: f64, n: usize| match scale {
+        Scale::Linear => linear_ticks(lo, hi, n),
+        Scale::LogLog => decade_ticks(lo, hi),
+    };
+    let yt = ticks(y0, y1, 6);
+    // as many x ticks as their labels leave room for
+    let mut xt = ticks(x0, x1, 5);
+    for n in (1..5).rev() {
+        let widths: f64 = xt
+            .at
             .iter()
-            .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .map(|&(x, y)| format!("{:.2},{:.2}", sx(x), sy(y)))
-            .collect();
+            .map(|(_, l)| text_width(l, FONT, false) + 8.0)
+            .sum();
+        if widths <= PLOT_W {
+            break;
+        }
+        xt = ticks(x0, x1, n);
+    }
+    let yw = yt
+        .at
+        .iter()
+        .map(|(_, l)| text_width(l, FONT, false))
+        .fold(0.0, f64::max);
+    let ylabel_x = 4.0 + 0.95 * FONT;
+    let ml = ylabel_x + 0.25 * FONT + 6.0 + yw + 5.0;
+    let lines = wrap(title, ml + PLOT_W + 12.0, FONT, true);
+    let mut c = Canvas::new();
+    for (i, l) in lines.iter().enumerate() {
+        c.label(&Label::new(4.0, 16.0 + LINE * i as f64, Anchor::Start, l.as_str()).bold());
+    }
+    let mt = 16.0 + LINE * (lines.len() as f64 - 1.0) + 16.0;
+    let (pw, ph) = (PLOT_W, PLOT_H);
+    let sx = |x: f64| ml + (x - xt.lo) / (xt.hi - xt.lo) * pw;
+    let sy = |y: f64| mt + ph - (y - yt.lo) / (yt.hi - yt.lo) * ph;
+    c.shape(
+        &format!("<rect x=\"{ml:.1}\" y=\"{mt:.1}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#222\"/>"),
+        ml + pw,
+        mt + ph,
+    );
+    for (v, l) in &xt.at {
+        let x = sx(*v);
+        c.shape(
+            &format!(
+                "<line x1=\"{x:.1}\" y1=\"{mt:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#ddd\"/>",
+                mt + ph
+            ),
+            x,
+            mt + ph,
+        );
+        c.label(&Label::new(x, mt + ph + 18.0, Anchor::Middle, l.as_str()));
+    }
+    for (v, l) in &yt.at {
+        let y = sy(*v);
+        c.shape(
+            &format!(
+                "<line x1=\"{ml:.1}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"#ddd\"/>",
+                ml + pw
+            ),
+            ml + pw,
+            y,
+        );
+        c.label(&Label::new(ml - 5.0, y + 4.0, Anchor::End, l.as_str()));
+    }
+    c.label(&Label::new(
+        ml + pw / 2.0,
+        mt + ph + 34.0,
+        Anchor::Middle,
+        xlabel,
+    ));
+    c.label(&Label::new(ylabel_x, mt + ph / 2.0, Anchor::Middle, ylabel).vertical());
+    for (k, se) in series.iter().enumerate() {
         let dash = if se.dashed {
             " stroke-dasharray=\"5 3\""
         } else {
             ""
         };
-        if !d.is_empty() {
-            let _ = write!(
-                s,
-                "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.6\"{dash} points=\"{}\"/>",
-                se.colour,
-                d.join(" ")
+        let on: Vec<(f64, f64)> = se
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|&(x, y)| (sx(x), sy(y)))
+            .collect();
+        if !on.is_empty() {
+            let mut d = String::new();
+            for (x, y) in &on {
+                let _ = write!(d, "{x:.2},{y:.2} ");
+            }
+            c.shape(
+                &format!(
+                    "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.6\"{dash} points=\"{}\"/>",
+                    se.colour,
+                    d.trim_end()
+                ),
+                ml + pw,
+                mt + ph,
             );
         }
-        let ly = mt + ph + 44.0 + 14.0 * k as f64;
-        let _ = write!(
-            s,
-            "<line x1=\"{ml}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"{dash}/><text x=\"{}\" y=\"{ly}\">{}</text>",
-            ly - 4.0,
+        if scale == Scale::LogLog {
+            for (x, y) in &on {
+                c.shape(
+                    &format!(
+                        "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"2.5\" fill=\"{}\"/>",
+                        se.colour
+                    ),
+                    x + 2.5,
+                    y + 2.5,
+                );
+            }
+        }
+        let ly = mt + ph + 52.0 + LINE * k as f64;
+        c.shape(
+            &format!(
+                "<line x1=\"{ml:.1}\" y1=\"{a:.1}\" x2=\"{b:.1}\" y2=\"{a:.1}\" stroke=\"{}\" stroke-width=\"2\"{dash}/>",
+                se.colour,
+                a = ly - 4.0,
+                b = ml + 24.0
+            ),
             ml + 24.0,
-            ly - 4.0,
-            se.colour,
-            ml + 30.0,
-            esc(&se.label)
+            ly,
+        );
+        c.label(&Label::new(ml + 30.0, ly, Anchor::Start, se.label.as_str()));
+    }
+    c.finish(title, "")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::layout::layout_problems;
+    use super::*;
+
+    #[test]
+    fn numbers_for_labels() {
+        let t = linear_ticks(-0.0342, 1.0, 6);
+        let labels: Vec<&str> = t.at.iter().map(|(_, l)| l.as_str()).collect();
+        assert_eq!(labels, ["-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1.0"]);
+        assert_eq!((t.lo, t.hi), (-0.2, 1.0));
+        let t = linear_ticks(0.0, 21.79, 5);
+        assert_eq!(t.at.last().unwrap().1, "25");
+        let t = linear_ticks(0.0, 3e-6, 3);
+        assert_eq!(t.at[1].1, "1e-6");
+        assert_eq!(decade_ticks(-16.2, 4.3).at[0].1, "1e-17");
+    }
+
+    /// Long titles wrap, wide tick labels push the frame right, long legend entries widen
+    /// the chart: no text leaves the viewBox or overlaps other text.
+    #[test]
+    fn plots_keep_their_text_inside_and_apart() {
+        let s = |label: &str, pts: Vec<(f64, f64)>| Series {
+            label: label.into(),
+            points: pts,
+            colour: "#000".into(),
+            dashed: false,
+        };
+        let plots = [
+            line_plot(
+                "E_avg = 2∫E(μ)μ dμ from a-table-with-a-long-name (midpoint rule over the table)",
+                "roughness (perceptual)",
+                "E_avg",
+                &[s("E_avg", vec![(0.0039, 1.0), (0.9961, 0.41)])],
+            ),
+            line_plot(
+                "A",
+                "cos θv = μ",
+                "A",
+                &[
+                    s("A table, r = 0.004", vec![(0.0, -0.0342), (1.0, 1.0)]),
+                    s(&"a very long legend entry ".repeat(4), vec![(0.0, 0.5)]),
+                ],
+            ),
+            line_plot(
+                "tiny",
+                "x",
+                "y",
+                &[s("y", vec![(1e-7, -3e-9), (2e-7, 4.2e-9)])],
+            ),
+            line_plot("huge", "x", "y", &[s("y", vec![(0.0, 1e7), (1e6, 3e7)])]),
+            plot(
+                "convergence",
+                "integrand evaluations",
+                "|error|",
+                &[s("brdfbake", vec![(1.2, -16.9), (4.3, -1.0)])],
+                Scale::LogLog,
+            ),
+        ];
+        for p in &plots {
+            assert_eq!(layout_problems(p), Vec::<String>::new(), "{p}");
+        }
+        assert!(
+            plots[0].matches("font-weight=\"bold\"").count() >= 2,
+            "wrapped"
         );
     }
-    s.push_str("</svg>\n");
-    s
 }

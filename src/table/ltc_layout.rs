@@ -220,7 +220,7 @@ impl HeitzTable {
     }
 
     fn from_flat(a: &[f64], b: &[f64]) -> Result<HeitzTable, LtcError> {
-        if a.len() != b.len() || a.len() % 4 != 0 {
+        if a.len() != b.len() || !a.len().is_multiple_of(4) {
             return Err(LtcError::Domain(format!(
                 "LTC arrays of {} and {} numbers (need 4 n^2 each)",
                 a.len(),

@@ -175,6 +175,43 @@ pub fn bake_until(
 /// texel's integrals together are bounded by
 /// [`INTEGRAL_EVAL_BUDGET`] evaluations, see [`crate::quadrature::budget`]).
 pub fn bake_with(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError> {
+    let mut lut = bake_unclamped(spec, opts)?;
+    clamp_nonnegative(spec, &mut lut);
+    Ok(lut)
+}
+
+/// Which channels of a table hold a quantity that cannot be negative: every integral of a
+/// non-negative integrand (albedos, split-sum terms, sheen, R and T, D, G, norms), every one
+/// but the off-diagonal entries of an LTC matrix.
+pub fn nonnegative_channels(spec: &TableSpec) -> Vec<bool> {
+    match spec.kind {
+        TableKind::Ltc => ltc::ltc_channels(spec)
+            .iter()
+            .map(|c| !matches!(c, LtcChannel::M20 | LtcChannel::M02))
+            .collect(),
+        _ => vec![true; channels(spec).len()],
+    }
+}
+
+/// Stores a computed value below 0 of a channel that cannot be negative
+/// ([`nonnegative_channels`]) as 0 (and −0 as +0). Such a value is a quadrature sum's
+/// rounding near a zero (filament-dfg's cloth channel at n·v → 1, α → 0: −5e-9), within its
+/// error estimate of the true value, which is ≥ 0: 0 is nearer to it, so the estimate still
+/// bounds the stored texel's error.
+fn clamp_nonnegative(spec: &TableSpec, lut: &mut Lut) {
+    let keep = nonnegative_channels(spec);
+    let nc = lut.channels.len().max(1);
+    for texel in lut.data.chunks_mut(nc) {
+        for (v, nonneg) in texel.iter_mut().zip(&keep) {
+            if *nonneg && v.is_sign_negative() {
+                *v = 0.0;
+            }
+        }
+    }
+}
+
+/// [`bake_with`] before [`clamp_nonnegative`].
+fn bake_unclamped(spec: &TableSpec, opts: &BakeOptions) -> Result<Lut, BakeError> {
     let deadline = opts.deadline;
     spec.validate().map_err(|msg| BakeError::Invalid {
         name: spec.name.clone(),
@@ -476,7 +513,9 @@ pub fn bake_with_fit(
             name: spec.name.clone(),
             msg,
         })?;
-        return bake_ltc(spec, opts);
+        let (mut lut, fit) = bake_ltc(spec, opts)?;
+        clamp_nonnegative(spec, &mut lut);
+        return Ok((lut, fit));
     }
     Ok((bake_with(spec, opts)?, None))
 }
