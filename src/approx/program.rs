@@ -171,7 +171,7 @@ impl Program {
         let mut acc = parts[d];
         for i in (0..d).rev() {
             acc = match parts[i] {
-                Arg::Const(c) if c == 0.0 => self.op(Op::Mul(acc, t[0])),
+                Arg::Const(0.0) => self.op(Op::Mul(acc, t[0])),
                 p => self.op(Op::Fma(acc, t[0], p)),
             };
         }

@@ -32,7 +32,7 @@ pub enum Form {
     Piecewise {
         cells: Vec<usize>,
         exponents: Vec<Vec<u8>>,
-        /// [channel][cell][monomial].
+        /// Indexed by channel, then cell, then monomial.
         coef: Vec<Vec<Vec<f32>>>,
     },
 }

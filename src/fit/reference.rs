@@ -71,6 +71,10 @@ pub fn karis() -> Reference {
     }
 }
 
+/// The sheen approximation's constants as published (c₀, c₁, c₂, c₃):
+/// E = c₀(1 − μ)³ + 1/(c₁ + exp(c₂ r + c₃)).
+pub const SHEEN: [f64; 4] = [0.65584461, 4.16526551, -7.97291361, 6.33516894];
+
 /// The sheen directional albedo approximation (see the module doc): inputs (n·v, r).
 pub fn sheen() -> Reference {
     let mut p = Program::new(&["cos_theta_v", "roughness"]);
@@ -83,13 +87,13 @@ pub fn sheen() -> Reference {
     // exp(x) = 2^(x·log2 e), the constants pre-multiplied
     let t = p.op(Op::Fma(
         r,
-        c((-7.97291361 * l2e) as f32),
-        c((6.33516894 * l2e) as f32),
+        c((SHEEN[2] * l2e) as f32),
+        c((SHEEN[3] * l2e) as f32),
     ));
     let e = p.op(Op::Exp2(t));
-    let d = p.op(Op::Add(e, c(4.16526551)));
+    let d = p.op(Op::Add(e, c(SHEEN[1] as f32)));
     let q = p.op(Op::Div(c(1.0), d));
-    let out = p.op(Op::Fma(c3, c(0.65584461), q));
+    let out = p.op(Op::Fma(c3, c(SHEEN[0] as f32), q));
     p.outputs.push(("e".into(), out));
     Reference {
         name: "gltf-sheen-albedo",
@@ -158,8 +162,7 @@ mod tests {
                     "{mu} {r}"
                 );
                 let c = 1.0 - mu;
-                let e = 0.65584461 * c * c * c
-                    + 1.0 / (4.16526551 + (-7.97291361 * r + 6.33516894f64).exp());
+                let e = SHEEN[0] * c * c * c + 1.0 / (SHEEN[1] + (SHEEN[2] * r + SHEEN[3]).exp());
                 assert!((s.eval(&[mu, r])[0] - e).abs() < 1e-6, "{mu} {r}");
             }
         }

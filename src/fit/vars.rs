@@ -251,7 +251,7 @@ impl VarSet {
 
 /// The variable sets worth trying for a table with these inputs, simplest first. `corner`:
 /// the table's model has the μ/α scaling at grazing smooth views (microfacet NDFs with a
-/// smooth limit; [`super::corner_applies`]).
+/// smooth limit: `brdfbake fit` takes every table with an NDF).
 pub fn candidates(inputs: &[Input], corner: bool) -> Vec<Vec<Var>> {
     let mu = inputs.iter().position(|i| i.quantity == Quantity::Cosine);
     let rough = inputs.iter().position(|i| {
