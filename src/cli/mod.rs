@@ -18,6 +18,7 @@ mod compare;
 mod completions;
 mod error;
 mod eval;
+mod fit;
 mod guards;
 mod inspect;
 mod laws;
@@ -60,6 +61,8 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Compute a quantity directly (D, G1, G2, E, E_avg, split sum, sheen), without a table.
     Eval(eval::EvalArgs),
+    /// Minimax fits of a table as shader functions: the Pareto front, errors against the exact integral.
+    Fit(fit::FitArgs),
     /// Recompute a spread of texels at high accuracy; exit 1 over the tolerance.
     Verify(verify::VerifyArgs),
     /// Compare an engine's shipped table with exact values at its texels, beside brdfbake's.
@@ -139,6 +142,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Probe(a) => probe::run(a),
         Command::Eval(a) => eval::run(a),
         Command::Verify(a) => verify::run(a),
+        Command::Fit(a) => fit::run(a),
         Command::Report(a) => report::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Laws(a) => laws::run(a),

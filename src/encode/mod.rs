@@ -5,6 +5,7 @@
 pub mod bin;
 pub mod dds;
 pub mod exr;
+pub mod function;
 pub mod ktx2;
 pub mod npy;
 pub mod npz;

@@ -1,0 +1,263 @@
+//! `brdfbake fit PRESET`: minimax fits of a table's exact function (src/fit/), their Pareto
+//! front (operations against max error), the published fits of the same function measured
+//! the same way, and the chosen fit emitted as functions (src/encode/function.rs) with a
+//! JSON sidecar.
+
+use super::CliError;
+use crate::encode::function;
+use crate::fit::{reference, search, target};
+use crate::numfmt::num;
+use serde_json::json;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct FitArgs {
+    /// A preset (a name such as karis-envbrdf or sheen-charlie, or a .json file).
+    pub preset: String,
+    /// The table to fit, when the preset has several.
+    #[arg(long)]
+    pub table: Option<String>,
+    /// Emit the cheapest fit whose max error (plus its f32 rounding bound) is at most this.
+    #[arg(long, value_name = "ERROR")]
+    pub max_error: Option<f64>,
+    /// Minimize the absolute or the relative error (relative to max(|exact|, 1e-3 max|exact|)).
+    #[arg(long, default_value = "absolute", value_parser = ["absolute", "relative"])]
+    pub weight: String,
+    /// Languages to emit the chosen fit in (comma-separated): glsl, hlsl, wgsl, c, rust.
+    #[arg(long, value_delimiter = ',', default_value = "glsl,hlsl,wgsl,c,rust")]
+    pub emit: Vec<String>,
+    /// Directory for the functions and the sidecar (nothing is written without --max-error).
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// One JSON document (schema brdfbake.fit/1) instead of the text table.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub guards: super::guards::Guards,
+}
+
+/// Search CPU seconds per validation point (measured: 66k points, 2 threads, 80 s wall).
+const SECONDS_PER_POINT: f64 = 2.5e-3;
+/// Peak bytes per validation point (the exchange's rows: up to 66 unknowns of 8 bytes, the
+/// coarse copy, variables and values).
+const BYTES_PER_POINT: u64 = 1200;
+
+pub fn run(a: FitArgs) -> Result<(), CliError> {
+    for l in &a.emit {
+        if function::dialect(l).is_none() {
+            return Err(CliError::input(format!(
+                "--emit {l}: unknown language (accepted: {})",
+                function::LANGUAGES.join(", ")
+            )));
+        }
+    }
+    if let Some(e) = a.max_error {
+        if !(e.is_finite() && e > 0.0) {
+            return Err(CliError::input(format!(
+                "--max-error must be a positive number, got {}",
+                num(e)
+            )));
+        }
+    }
+    let weight = match a.weight.as_str() {
+        "relative" => search::Weight::Relative,
+        _ => search::Weight::Absolute,
+    };
+    let presets = super::bake::resolve(std::slice::from_ref(&a.preset))?;
+    let preset = &presets[0];
+    let t = super::compare::pick_table(preset, a.table.as_deref())?;
+    let axes = target::grid_axes(&t.spec).map_err(CliError::input)?;
+    let points: usize = axes.iter().map(|x| x.size).product();
+    let mut grid = t.clone();
+    grid.spec.axes = axes;
+    let mut time = crate::resources::estimate_table_time(&grid);
+    time.cpu_seconds += points as f64 * SECONDS_PER_POINT;
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this fit",
+        memory: points as u64 * BYTES_PER_POINT,
+        memory_detail: format!("{points} validation points"),
+        time,
+        threads: rayon::current_num_threads(),
+        smaller: "fit a table of fewer texels",
+    })?;
+    let tg = target::build(&t.spec, Some(&deadline)).map_err(CliError::input)?;
+    let corner = t.spec.model.ndf.is_some();
+    let front = search::search(&tg, weight, corner, &search::Limits::default(), &|| {
+        deadline.passed()
+    });
+    if deadline.passed() {
+        return Err(super::guards::stopped("this fit", &deadline));
+    }
+    let refs: Vec<(reference::Reference, reference::Measured)> = reference::all()
+        .into_iter()
+        .filter(|r| reference::preset_of(r.name) == Some(preset.name.as_str()))
+        .map(|r| {
+            let m = reference::measure(&r.program, &tg);
+            (r, m)
+        })
+        .collect();
+    let chosen = a
+        .max_error
+        .map(|e| {
+            front.iter().find(|c| c.max_total() <= e).ok_or_else(|| {
+                CliError::env(format!(
+                    "no fit of {}/{} reaches --max-error {} (the best: {} with {} operations); ask for more error or bake a texture",
+                    preset.name,
+                    t.spec.name,
+                    num(e),
+                    num(front.last().map_or(f64::NAN, |c| c.max_total())),
+                    front.last().map_or(0, |c| c.counts.ops)
+                ))
+            })
+        })
+        .transpose()?;
+    let rows: Vec<serde_json::Value> = front
+        .iter()
+        .map(|c| {
+            json!({
+                "form": c.description,
+                "ops": c.counts.ops,
+                "special": c.counts.special,
+                "constants": c.counts.constants,
+                "max_error": c.error,
+                "f32_bound": c.f32_bound,
+            })
+        })
+        .collect();
+    let ref_rows: Vec<serde_json::Value> = refs
+        .iter()
+        .map(|(r, m)| {
+            json!({
+                "name": r.name,
+                "source": r.source,
+                "ops": m.counts.ops,
+                "special": m.counts.special,
+                "max_error": m.error,
+                "at": m.argmax,
+            })
+        })
+        .collect();
+    if a.json {
+        let doc = json!({
+            "schema": "brdfbake.fit/1",
+            "preset": preset.name,
+            "table": t.spec.name,
+            "channels": tg.channels,
+            "weight": weight.name(),
+            "validation_points": tg.points(),
+            "pareto": rows,
+            "references": ref_rows,
+        });
+        outln!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+    } else {
+        outln!(
+            "{}/{}: {} error against the exact integral at {} validation points (texels, midpoints, ends)",
+            preset.name,
+            t.spec.name,
+            weight.name(),
+            tg.points()
+        );
+        outln!(
+            "{:>4} {:>3} {:>6}  {:>10} {:>9}  form",
+            "ops",
+            "sp",
+            "const",
+            "max error",
+            "f32 bound"
+        );
+        for c in &front {
+            outln!(
+                "{:>4} {:>3} {:>6}  {:>10.3e} {:>9.1e}  {}",
+                c.counts.ops,
+                c.counts.special,
+                c.counts.constants,
+                c.max_error(),
+                c.f32_bound.iter().cloned().fold(0.0, f64::max),
+                c.description
+            );
+        }
+        for (r, m) in &refs {
+            outln!(
+                "{:>4} {:>3} {:>6}  {:>10.3e} {:>9}  {} (published; worst at {:?})",
+                m.counts.ops,
+                m.counts.special,
+                m.counts.constants,
+                m.max_error(),
+                "",
+                r.name,
+                m.argmax[m
+                    .error
+                    .iter()
+                    .enumerate()
+                    .max_by(|x, y| x.1.total_cmp(y.1))
+                    .map_or(0, |x| x.0)]
+            );
+        }
+    }
+    if let Some(c) = chosen {
+        let base = format!("{}-{}-fit", preset.name, t.spec.name);
+        let fname = base.replace('-', "_");
+        let program = c.fitted.program(&tg.inputs, &tg.channels);
+        let comment = vec![
+            format!(
+                "brdfbake fit {} --table {}: {}",
+                preset.name, t.spec.name, c.description
+            ),
+            format!(
+                "inputs ({}), outputs ({})",
+                program.inputs.join(", "),
+                tg.channels.join(", ")
+            ),
+            format!(
+                "max {} error per channel {:?} (f64 evaluation), f32 rounding bound {:?}",
+                weight.name(),
+                c.error.iter().map(|e| num(*e)).collect::<Vec<_>>(),
+                c.f32_bound.iter().map(|e| num(*e)).collect::<Vec<_>>()
+            ),
+            format!(
+                "{} operations ({} div/sqrt/exp2), {} constants",
+                c.counts.ops, c.counts.special, c.counts.constants
+            ),
+        ];
+        let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+        for l in &a.emit {
+            let d = function::dialect(l).expect("checked above");
+            let text = function::encode(&*d, &fname, &program, &comment);
+            files.push((
+                a.out.join(format!("{base}.{}", d.extension())),
+                text.into_bytes(),
+            ));
+        }
+        let sidecar = json!({
+            "schema": "brdfbake.fit/1",
+            "preset": preset.name,
+            "table": t.spec.name,
+            "function": fname,
+            "inputs": tg.inputs.iter().map(|i| json!({"name": i.name, "domain": i.domain})).collect::<Vec<_>>(),
+            "channels": tg.channels,
+            "weight": weight.name(),
+            "form": c.description,
+            "max_error": c.error,
+            "f32_bound": c.f32_bound,
+            "ops": c.counts,
+            "fit": c.fitted,
+        });
+        files.push((
+            a.out.join(format!("{base}.json")),
+            serde_json::to_string_pretty(&sidecar)
+                .expect("serializable")
+                .into_bytes(),
+        ));
+        std::fs::create_dir_all(&a.out)
+            .map_err(|e| CliError::env(format!("creating {}: {e}", a.out.display())))?;
+        crate::write::write_all_atomic(&files)
+            .map_err(|e| CliError::env(format!("writing the fit: {e}")))?;
+        for (p, _) in &files {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    Ok(())
+}
