@@ -253,3 +253,41 @@ fn a_truncated_fit_fails_verify() {
         v.error
     );
 }
+
+/// Inputs outside the domain never give NaN or Inf: an input under a square root or a
+/// quotient is clamped in the code (a normal-mapped back face passes n·v < 0), and the other
+/// forms are polynomials, finite everywhere. Evaluated in f32 as the code runs.
+#[test]
+fn inputs_outside_the_domain_stay_finite() {
+    let t = small_dfg();
+    let sqrt_vars = vec![
+        Var::Axis {
+            axis: 0,
+            warp: Warp::Sqrt,
+        },
+        Var::Axis {
+            axis: 1,
+            warp: Warp::Linear,
+        },
+    ];
+    let programs = [
+        search::fit_polynomial(&t, Weight::Absolute, &sqrt_vars, 3)
+            .unwrap()
+            .fitted
+            .program(&t.inputs, &t.channels),
+        degree6(&t).fitted.program(&t.inputs, &t.channels),
+        piecewise_program(&t),
+    ];
+    for p in &programs {
+        for x in [
+            [-0.5, 0.3],
+            [-1e-3, -0.2],
+            [1.5, 1.2],
+            [0.0, 0.0],
+            [-2.0, 3.0],
+        ] {
+            let y = p.eval_f32(&x);
+            assert!(y.iter().all(|v| v.is_finite()), "{x:?} -> {y:?}");
+        }
+    }
+}

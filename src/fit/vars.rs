@@ -191,11 +191,22 @@ impl VarSet {
     /// corner pair). `extra`: a factor applied to every map (a piecewise fit's cell count
     /// per variable), or 1.
     pub fn emit(&self, p: &mut Program, inputs: &[Input], extra: &[f32]) -> Vec<Arg> {
+        // an input under a square root or a quotient is clamped to its domain even when the
+        // domain is the natural one: a caller's n·v slightly below 0 (a normal-mapped
+        // back face) would otherwise give NaN; a polynomial extrapolates finitely
+        let under_root = |k: usize| {
+            self.vars.iter().any(|v| match *v {
+                Var::Axis { axis, warp } => axis == k && warp == Warp::Sqrt,
+                Var::CornerAngle { mu, rough, .. } | Var::CornerRadius { mu, rough, .. } => {
+                    mu == k || rough == k
+                }
+            })
+        };
         let xs: Vec<Arg> = inputs
             .iter()
             .enumerate()
             .map(|(k, i)| {
-                if needs_clamp(i) {
+                if needs_clamp(i) || under_root(k) {
                     p.op(Op::Clamp(
                         Arg::Input(k),
                         i.domain[0] as f32,
