@@ -102,7 +102,7 @@ pub fn sheen() -> Reference {
     }
 }
 
-/// A program's error on a target's validation set: per channel the max |program − exact|
+/// A program's error on a target's validation set and check set: per channel the max |program − exact|
 /// and the point (coordinates) where it occurs.
 #[derive(Clone, Debug)]
 pub struct Measured {
@@ -123,11 +123,21 @@ pub fn measure(program: &Program, target: &Target) -> Measured {
     let nc = target.values.len();
     let mut error = vec![0.0f64; nc];
     let mut argmax = vec![Vec::new(); nc];
-    for i in 0..target.points() {
-        let x = super::vars::clamp_inputs(&target.inputs, &target.point(i));
+    // the grid's points, then the check set's (as a fit's error is measured)
+    let grid = (0..target.points()).map(|i| {
+        let exact: Vec<f64> = target.values.iter().map(|v| v[i]).collect();
+        (target.point(i), exact)
+    });
+    let check = target
+        .check
+        .iter()
+        .cloned()
+        .zip(target.check_values.iter().cloned());
+    for (x, exact) in grid.chain(check) {
+        let x = super::vars::clamp_inputs(&target.inputs, &x);
         let y = program.eval(&x);
         for c in 0..nc {
-            let e = (y[c] - target.values[c][i]).abs();
+            let e = (y[c] - exact[c]).abs();
             if e > error[c] || argmax[c].is_empty() {
                 error[c] = error[c].max(e);
                 argmax[c] = x.clone();

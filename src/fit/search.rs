@@ -326,7 +326,7 @@ fn polynomials(
             .enumerate()
             .map(|(c, &j)| per[c][j].1.max_error)
             .collect();
-        out.push(candidate(target, fitted, error, pts, channels));
+        out.push(candidate(target, fitted, error, pts, w, channels));
     }
     pareto(out)
 }
@@ -357,8 +357,25 @@ fn candidate(
     fitted: Fitted,
     error: Vec<f64>,
     pts: &[Vec<f64>],
+    w: &[Option<Vec<f64>>],
     channels: &[String],
 ) -> Candidate {
+    // the error between the grid's points: the larger of the two sets' (weighted as on the
+    // grid: a relative weight's floor is the grid's smallest weight)
+    let program = fitted.program(&target.inputs, channels);
+    let mut error = error;
+    for (x, exact) in target.check.iter().zip(&target.check_values) {
+        let y = program.eval(&vars::clamp_inputs(&target.inputs, x));
+        for (c, e) in error.iter_mut().enumerate() {
+            let scale = w[c].as_ref().map_or(1.0, |ws| {
+                exact[c]
+                    .abs()
+                    .max(ws.iter().copied().fold(f64::INFINITY, f64::min))
+            });
+            let d = (y[c] - exact[c]).abs() / scale;
+            *e = e.max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+    }
     let counts = fitted.counts(&target.inputs, channels);
     let f32_bound = fitted.f32_bound(pts);
     let description = fitted.describe(&target.inputs);
@@ -419,7 +436,7 @@ fn piecewise(
                     coef,
                 },
             };
-            Some(candidate(target, fitted, error, pts, &target.channels))
+            Some(candidate(target, fitted, error, pts, w, &target.channels))
         })
         .collect();
     pareto(fits.into_iter().flatten().collect())

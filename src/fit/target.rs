@@ -44,6 +44,12 @@ pub struct Target {
     pub coords: Vec<Vec<f64>>,
     /// Per channel, the exact value at every point (axis 0 fastest).
     pub values: Vec<Vec<f64>>,
+    /// Points off the grid ([`check_points`]), coordinates as a caller passes them, and the
+    /// exact channels at each: a fit's stated error is the larger of its errors on the grid
+    /// and here, so a fit that is good at the grid's points and wrong between them (a
+    /// piecewise fit near grazing views, seen off by twice its grid error) says so.
+    pub check: Vec<Vec<f64>>,
+    pub check_values: Vec<Vec<f64>>,
     /// Quadrature evaluations spent.
     pub evaluations: u64,
 }
@@ -161,7 +167,7 @@ pub fn build(
         .iter()
         .map(|a| (0..a.size).map(|i| a.nominal_coord(i)).collect())
         .collect();
-    let inputs = spec
+    let inputs: Vec<Input> = spec
         .axes
         .iter()
         .map(|a| Input {
@@ -170,14 +176,65 @@ pub fn build(
             domain: a.coordinate_span(),
         })
         .collect();
+    let check = check_points(&inputs, &coords);
+    let check_values = {
+        use rayon::prelude::*;
+        check
+            .par_iter()
+            .map(|x| {
+                if deadline.is_some_and(|d| d.passed()) {
+                    return Err("stopped".to_string());
+                }
+                exact_at(spec, x, grid.tolerance)
+            })
+            .collect::<Result<Vec<_>, String>>()?
+    };
     Ok(Target {
         spec: spec.clone(),
         channels: lut.channels.iter().map(|c| c.name.clone()).collect(),
         inputs,
         coords,
         values,
+        check,
+        check_values,
         evaluations: lut.evaluations,
     })
+}
+
+/// How many points off the grid the check set holds.
+pub const CHECK_POINTS: usize = 1024;
+
+/// The check set: [`CHECK_POINTS`] points drawn from a fixed splitmix64 stream, uniform over
+/// the domain, except that a quarter of them put a cosine axis in the grid's first four
+/// cells (grazing views, where the split sum and the albedos change fastest and a fit's
+/// variables, √μ and μ/(μ + α), bend most). None is a grid point but by chance.
+pub fn check_points(inputs: &[Input], coords: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let mut state = 0x5EED_F17Eu64;
+    let mut next = || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..CHECK_POINTS)
+        .map(|k| {
+            inputs
+                .iter()
+                .zip(coords)
+                .map(|(i, c)| {
+                    let [lo, hi] = i.domain;
+                    let u = next();
+                    if k % 4 == 0 && i.quantity == Quantity::Cosine && c.len() > 4 {
+                        let end = c[4].min(hi);
+                        lo + (end - lo) * u
+                    } else {
+                        lo + (hi - lo) * u
+                    }
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// The exact channels at the coordinates `x` (one per axis), at quadrature tolerance `tol`
