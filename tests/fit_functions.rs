@@ -291,3 +291,52 @@ fn inputs_outside_the_domain_stay_finite() {
         }
     }
 }
+
+/// `brdfbake verify` of a fit's sidecar: passes for the fit as written (exit 0), fails for the
+/// same fit with a coefficient off by 0.05 (exit 1, the error named), and refuses a sidecar
+/// without its fit (exit 2). The sidecar is the one `brdfbake fit --max-error` writes, made
+/// here from a fit of the preset's function on a coarser grid (the same function).
+#[test]
+fn verify_of_a_fit_sidecar_passes_and_a_changed_fit_fails() {
+    let t = small_dfg();
+    let c = degree6(&t);
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, fit: serde_json::Value| {
+        let doc = serde_json::json!({
+            "schema": "brdfbake.fit/1", "preset": "karis-envbrdf", "table": "envbrdf",
+            "channels": t.channels, "max_error": c.error, "f32_bound": c.f32_bound, "fit": fit,
+        });
+        let p = dir.path().join(name);
+        std::fs::write(&p, doc.to_string()).unwrap();
+        p
+    };
+    let run = |p: &std::path::Path| {
+        Command::new(env!("CARGO_BIN_EXE_brdfbake"))
+            .arg("verify")
+            .arg(p)
+            .output()
+            .unwrap()
+    };
+    let good = run(&write(
+        "good.json",
+        serde_json::to_value(&c.fitted).unwrap(),
+    ));
+    assert_eq!(
+        good.status.code(),
+        Some(0),
+        "{}{}",
+        String::from_utf8_lossy(&good.stdout),
+        String::from_utf8_lossy(&good.stderr)
+    );
+    let mut changed = c.fitted.clone();
+    match &mut changed.form {
+        Form::Polynomial { channels } => channels[0].coef[0] += 0.05,
+        _ => unreachable!("a global polynomial"),
+    }
+    let bad = run(&write("bad.json", serde_json::to_value(&changed).unwrap()));
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("misses its stated error"));
+    let broken = run(&write("broken.json", serde_json::json!({"vars": 3})));
+    assert_eq!(broken.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&broken.stderr).contains("\"fit\""));
+}

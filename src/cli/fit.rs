@@ -261,3 +261,115 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
     }
     Ok(())
 }
+
+/// Points `verify` re-evaluates a fit at, and their stream's seed.
+const VERIFY_POINTS: usize = 512;
+const VERIFY_SEED: u64 = 0xF17_C0DE;
+
+/// `brdfbake verify FIT.json`: the fit of a `brdfbake.fit/1` sidecar (its preset by name)
+/// re-evaluated as the code runs (f32) at [`VERIFY_POINTS`] pseudo-random points of the
+/// domain against the exact integral at 1e-9. It passes when every channel is within the
+/// sidecar's stated max error — measured on a grid and a check set, so between their points
+/// a smooth fit can exceed it by its curvature over half a step: 5% is allowed — plus its
+/// f32 bound plus the quadrature tolerance; else exit 1, naming the worst point.
+pub fn verify_sidecar(
+    path: &std::path::Path,
+    doc: &serde_json::Value,
+    json_out: bool,
+    guards: &super::guards::Guards,
+) -> Result<(), CliError> {
+    let bad = |what: &str| {
+        CliError::input(format!(
+            "{}: a brdfbake.fit/1 sidecar needs {what}",
+            path.display()
+        ))
+    };
+    let preset_name = doc["preset"]
+        .as_str()
+        .ok_or_else(|| bad("\"preset\" (a name)"))?;
+    let table_name = doc["table"].as_str().ok_or_else(|| bad("\"table\""))?;
+    let fitted: crate::fit::form::Fitted = serde_json::from_value(doc["fit"].clone())
+        .map_err(|e| bad(&format!("\"fit\" as brdfbake writes it ({e})")))?;
+    let stated = |key: &str| -> Result<Vec<f64>, CliError> {
+        doc[key]
+            .as_array()
+            .and_then(|v| v.iter().map(|x| x.as_f64()).collect::<Option<Vec<f64>>>())
+            .ok_or_else(|| bad(&format!("\"{key}\" (a number per channel)")))
+    };
+    let (max_error, f32_bound) = (stated("max_error")?, stated("f32_bound")?);
+    let presets = super::bake::resolve(&[preset_name.to_string()])?;
+    let t = super::compare::pick_table(&presets[0], Some(table_name))?;
+    let inputs = target::inputs(&t.spec);
+    let channels: Vec<String> = doc["channels"]
+        .as_array()
+        .map(|v| {
+            v.iter()
+                .filter_map(|x| x.as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default();
+    if channels.len() != max_error.len() || channels.len() != f32_bound.len() {
+        return Err(bad("as many channels as max_error and f32_bound entries"));
+    }
+    let mut time = crate::resources::estimate_table_time(&t);
+    time.cpu_seconds += VERIFY_POINTS as f64 * SECONDS_PER_POINT;
+    let deadline = guards.admit(&super::guards::Work {
+        what: "this verify",
+        memory: VERIFY_POINTS as u64 * BYTES_PER_POINT,
+        memory_detail: format!("{VERIFY_POINTS} points"),
+        time,
+        threads: 1,
+        smaller: "verify a smaller fit",
+    })?;
+    let program = fitted.program(&inputs, &channels);
+    if program.outputs.len() != channels.len() {
+        return Err(bad("a fit with one output per channel"));
+    }
+    let tol = 1e-9;
+    let v = crate::deadline::scoped(&deadline, || {
+        crate::fit::verify(&t.spec, &inputs, &program, VERIFY_POINTS, VERIFY_SEED, tol)
+    })
+    .map_err(CliError::input)?;
+    if deadline.passed() {
+        return Err(super::guards::stopped("this verify", &deadline));
+    }
+    let allowed: Vec<f64> = (0..channels.len())
+        .map(|c| 1.05 * max_error[c] + f32_bound[c] + tol)
+        .collect();
+    let pass = (0..channels.len()).all(|c| v.error[c] <= allowed[c]);
+    if json_out {
+        println!(
+            "{}",
+            json!({"schema": "brdfbake.fit-verify/1", "file": path.display().to_string(),
+                   "points": v.points, "channels": channels, "error": v.error,
+                   "at": v.argmax, "allowed": allowed, "pass": pass})
+        );
+    } else {
+        println!(
+            "{}: {}/{} fit re-evaluated in f32 at {} points against the exact integral",
+            path.display(),
+            preset_name,
+            table_name,
+            v.points
+        );
+        for (c, name) in channels.iter().enumerate() {
+            let at: Vec<String> = v.argmax[c].iter().map(|x| num(*x)).collect();
+            println!(
+                "  {name}: max |fit - exact| {} at ({}), allowed {} (1.05 x stated {} + f32 bound {})",
+                num(v.error[c]),
+                at.join(", "),
+                num(allowed[c]),
+                num(max_error[c]),
+                num(f32_bound[c])
+            );
+        }
+    }
+    if pass {
+        Ok(())
+    } else {
+        Err(CliError::env(format!(
+            "{}: the fit misses its stated error (above)",
+            path.display()
+        )))
+    }
+}

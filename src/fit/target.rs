@@ -167,15 +167,7 @@ pub fn build(
         .iter()
         .map(|a| (0..a.size).map(|i| a.nominal_coord(i)).collect())
         .collect();
-    let inputs: Vec<Input> = spec
-        .axes
-        .iter()
-        .map(|a| Input {
-            name: a.name.clone(),
-            quantity: a.quantity,
-            domain: a.coordinate_span(),
-        })
-        .collect();
+    let inputs = inputs(spec);
     let check = check_points(&inputs, &coords);
     let check_values = {
         use rayon::prelude::*;
@@ -199,6 +191,18 @@ pub fn build(
         check_values,
         evaluations: lut.evaluations,
     })
+}
+
+/// The fitted function's inputs: the table's axes, their quantities and coordinate spans.
+pub fn inputs(spec: &TableSpec) -> Vec<Input> {
+    spec.axes
+        .iter()
+        .map(|a| Input {
+            name: a.name.clone(),
+            quantity: a.quantity,
+            domain: a.coordinate_span(),
+        })
+        .collect()
 }
 
 /// How many points off the grid the check set holds.
