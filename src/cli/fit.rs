@@ -311,7 +311,7 @@ pub fn verify_sidecar(
     if channels.len() != max_error.len() || channels.len() != f32_bound.len() {
         return Err(bad("as many channels as max_error and f32_bound entries"));
     }
-    let mut time = crate::resources::estimate_table_time(&t);
+    let mut time = crate::resources::estimate_table_time(t);
     time.cpu_seconds += VERIFY_POINTS as f64 * SECONDS_PER_POINT;
     let deadline = guards.admit(&super::guards::Work {
         what: "this verify",
