@@ -21,6 +21,10 @@ pub struct FitArgs {
     #[arg(long, value_name = "ERROR")]
     pub max_error: Option<f64>,
     /// Minimize the absolute or the relative error (relative to max(|exact|, 1e-3 max|exact|)).
+    /// Instead of fitting: the smallest texture (texels per axis, 4 to 256) whose filtered
+    /// lookups stay within this error, by the sidecar's lookup-error bounds
+    #[arg(long, value_name = "ERROR", conflicts_with = "max_error")]
+    pub texture_error: Option<f64>,
     #[arg(long, default_value = "absolute", value_parser = ["absolute", "relative"])]
     pub weight: String,
     /// Languages to emit the chosen fit in (comma-separated): glsl, hlsl, wgsl, c, rust.
@@ -66,6 +70,9 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
     let presets = super::bake::resolve(std::slice::from_ref(&a.preset))?;
     let preset = &presets[0];
     let t = super::compare::pick_table(preset, a.table.as_deref())?;
+    if let Some(e) = a.texture_error {
+        return texture_sizes(&a, preset, t, e);
+    }
     let axes = target::grid_axes(&t.spec).map_err(CliError::input)?;
     let points: usize = axes.iter().map(|x| x.size).product();
     let mut grid = t.clone();
@@ -372,4 +379,83 @@ pub fn verify_sidecar(
             path.display()
         )))
     }
+}
+
+/// `fit --texture-error E`: every size of `fit::resolution::SIZES` with its lookup-error
+/// bounds (exact and 8-bit weights) and typical error, and the smallest size that holds E.
+fn texture_sizes(
+    a: &FitArgs,
+    preset: &crate::preset::Preset,
+    t: &crate::preset::PresetTable,
+    e: f64,
+) -> Result<(), CliError> {
+    if !(e.is_finite() && e > 0.0) {
+        return Err(CliError::input(format!(
+            "--texture-error must be a positive number, got {e}"
+        )));
+    }
+    let mut big = t.clone();
+    for ax in &mut big.spec.axes {
+        if ax.size > 1 {
+            ax.size = *crate::fit::resolution::SIZES.last().expect("sizes");
+        }
+    }
+    let deadline = a.guards.admit(&super::guards::Work {
+        what: "this size search",
+        memory: {
+            let m = crate::resources::estimate_table(&big, &[]);
+            m.kept + m.scratch
+        },
+        memory_detail: "the largest size's table".into(),
+        time: crate::resources::estimate_table_time(&big),
+        threads: rayon::current_num_threads(),
+        smaller: "search a table of fewer axes",
+    })?;
+    let r =
+        crate::fit::resolution::resolutions(preset, t, Some(&deadline)).map_err(CliError::input)?;
+    let holds = |f: &dyn Fn(&crate::fit::resolution::Resolution) -> f64| {
+        r.iter().find(|x| f(x) <= e).map(|x| x.size)
+    };
+    let (ideal, hardware, typical) = (
+        holds(&|x| x.ideal),
+        holds(&|x| x.hardware),
+        holds(&|x| x.estimate),
+    );
+    if a.json {
+        println!(
+            "{}",
+            json!({"preset": preset.name, "table": t.spec.name, "texture_error": e,
+                   "sizes": r.iter().map(|x| json!({"size": x.size, "ideal_filtering": x.ideal,
+                   "hardware_filtering": x.hardware, "typical": x.estimate})).collect::<Vec<_>>(),
+                   "smallest": {"ideal_filtering": ideal, "hardware_filtering": hardware,
+                   "typical": typical}})
+        );
+        return Ok(());
+    }
+    println!(
+        "{}/{}: lookup error by texels per axis (bounds as the sidecar's lookup_error)",
+        preset.name, t.spec.name
+    );
+    println!("  size  exact weights  8-bit weights  typical");
+    for x in &r {
+        println!(
+            "  {:>4}  {:>13}  {:>13}  {:>7}",
+            x.size,
+            num(x.ideal),
+            num(x.hardware),
+            num(x.estimate)
+        );
+    }
+    let say = |what: &str, s: Option<usize>| match s {
+        Some(n) => println!("  {what}: {n} texels per axis hold {}", num(e)),
+        None => println!(
+            "  {what}: no size up to {} holds {}",
+            crate::fit::resolution::SIZES.last().expect("sizes"),
+            num(e)
+        ),
+    };
+    say("bound, exact weights", ideal);
+    say("bound, 8-bit weights", hardware);
+    say("typical", typical);
+    Ok(())
 }

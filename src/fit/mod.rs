@@ -11,6 +11,7 @@
 pub mod figures;
 pub mod form;
 pub mod reference;
+pub mod resolution;
 pub mod search;
 pub mod target;
 pub mod vars;
