@@ -363,15 +363,18 @@ fn candidate(
     // the error between the grid's points: the larger of the two sets' (weighted as on the
     // grid: a relative weight's floor is the grid's smallest weight)
     let program = fitted.program(&target.inputs, channels);
+    let floors: Vec<Option<f64>> = w
+        .iter()
+        .map(|ws| {
+            ws.as_ref()
+                .map(|ws| ws.iter().copied().fold(f64::INFINITY, f64::min))
+        })
+        .collect();
     let mut error = error;
     for (x, exact) in target.check.iter().zip(&target.check_values) {
         let y = program.eval(&vars::clamp_inputs(&target.inputs, x));
         for (c, e) in error.iter_mut().enumerate() {
-            let scale = w[c].as_ref().map_or(1.0, |ws| {
-                exact[c]
-                    .abs()
-                    .max(ws.iter().copied().fold(f64::INFINITY, f64::min))
-            });
+            let scale = floors[c].map_or(1.0, |f| exact[c].abs().max(f));
             let d = (y[c] - exact[c]).abs() / scale;
             *e = e.max(if d.is_nan() { f64::INFINITY } else { d });
         }
