@@ -18,23 +18,11 @@ use brdfbake::kernels::ltc_check::{
     test_roughnesses, test_views, ErrorStats, PolygonLight,
 };
 use brdfbake::kernels::ltc_fit::{fit_grid, LtcFitOptions, LtcGrid};
-use brdfbake::model::{Brdf, Fresnel, Masking, Ndf, NdfKind, Specular};
 use brdfbake::table::albedo::directional_albedo;
+use brdfbake::table::ltc_heldout::ggx;
 use brdfbake::table::ltc_layout::{heitz_axes, HeitzTable, TexelStorage, HEITZ_SIZE};
 use rayon::prelude::*;
 use std::time::Instant;
-
-fn ggx(alpha: f64) -> Result<Brdf, String> {
-    Ok(Brdf {
-        specular: Some(Specular {
-            ndf: Ndf::new(NdfKind::Ggx, alpha)?,
-            masking: Masking::SmithHeightCorrelated,
-            fresnel: Fresnel::None,
-        }),
-        diffuse_weight: 0.0,
-        diffuse: brdfbake::model::DiffuseLobe::Lambert,
-    })
-}
 
 const TRUTH_TOL: f64 = 1e-7;
 

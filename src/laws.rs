@@ -357,7 +357,7 @@ pub fn energy_until(
             } else {
                 match deadline {
                     // (the rules inside stop refining once it passes: crate::quadrature::budget)
-                    Some(d) => crate::deadline::scoped(*d, || {
+                    Some(d) => crate::deadline::scoped(d, || {
                         directional_albedo(m, t.to_radians(), p.to_radians(), tol)
                     }),
                     None => directional_albedo(m, t.to_radians(), p.to_radians(), tol),

@@ -30,12 +30,14 @@
 //! assert!(e > 0.0 && e <= 1.0);
 //! ```
 
+pub mod approx;
 pub mod cli;
 pub mod deadline;
 pub mod digest;
 pub mod encode;
 pub mod engine;
 pub mod engines;
+pub mod fit;
 pub mod hemisphere;
 pub mod input;
 pub mod kernels;

@@ -572,6 +572,36 @@ pub struct Channel {
     pub meaning: String,
 }
 
+/// A table of test data for encoders' tests: axes `a0, a1, …` of cosines over [0, 1] at texel
+/// centres, channels `c0, c1, …`, the texels `data` (channels fastest).
+#[cfg(test)]
+pub(crate) fn test_table(sizes: &[usize], nc: usize, data: Vec<f32>) -> Lut {
+    Lut {
+        axes: sizes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| Axis {
+                name: format!("a{k}"),
+                quantity: Quantity::Cosine,
+                size: n,
+                range: [0.0, 1.0],
+                convention: Convention::Centers,
+                warp: Default::default(),
+                clamp: None,
+            })
+            .collect(),
+        channels: (0..nc)
+            .map(|c| Channel {
+                name: format!("c{c}"),
+                meaning: String::new(),
+            })
+            .collect(),
+        data,
+        error_estimate: vec![0.0; nc],
+        evaluations: 0,
+    }
+}
+
 /// A baked table.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lut {

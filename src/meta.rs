@@ -529,6 +529,21 @@ pub fn metadata_with_fit(
             "orientation": "the first row is y = 0, the top row of the DDS image (Direct3D, Vulkan and Metal texture coordinate v = 0): no y-flip; OpenGL loaders that flip DDS images must not flip these",
         });
     }
+    // (only when an array format is written: other sidecars stay as they were)
+    let notes: Vec<&str> = [
+        ("npy", crate::encode::npy::FILE_NOTE),
+        ("npz", crate::encode::npz::FILE_NOTE),
+        ("bin", crate::encode::bin::FILE_NOTE),
+    ]
+    .into_iter()
+    .filter(|(k, _)| files.iter().any(|(f, _)| f == k))
+    .map(|(_, note)| note)
+    .collect();
+    if !notes.is_empty() {
+        let mut array = crate::encode::bin::array_layout(lut, spec.storage);
+        array["files"] = json!(notes);
+        v["storage"]["array"] = array;
+    }
     if spec.kind.is_ltc() {
         v["ltc"] = ltc_section(table, fit);
     }

@@ -3,9 +3,12 @@
 //! Nothing is written until every table of the preset has baked and encoded, and then all
 //! files are replaced atomically, so a failure never leaves a partial or mixed set.
 
+use crate::encode::bin::RawBin;
 use crate::encode::dds::DdsEncoder;
 use crate::encode::exr::ExrEncoder;
 use crate::encode::ktx2::{Ktx2Encoder, Supercompression};
+use crate::encode::npy::Npy;
+use crate::encode::npz::Npz;
 use crate::encode::png::PngPreview;
 use crate::encode::png_data::PngData;
 use crate::encode::shader::{ShaderLang, ShaderSnippet};
@@ -106,6 +109,18 @@ pub fn encode(
                 Format::Hlsl => ShaderLang::Hlsl,
                 _ => ShaderLang::Wgsl,
             },
+            table_name: name,
+        }),
+        Format::Npy => one(&Npy {
+            storage,
+            table_name: name,
+        }),
+        Format::Npz => one(&Npz {
+            storage,
+            table_name: name,
+        }),
+        Format::Bin => one(&RawBin {
+            storage,
             table_name: name,
         }),
     }

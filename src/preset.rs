@@ -51,10 +51,17 @@ pub enum Format {
     Hlsl,
     /// WGSL lookup function.
     Wgsl,
+    /// The texels as a NumPy `.npy` array ([`crate::encode::npy`]).
+    Npy,
+    /// The texels and header attributes as a NumPy `.npz` archive ([`crate::encode::npz`]).
+    Npz,
+    /// The texels as raw little-endian numbers, the layout in the sidecar
+    /// ([`crate::encode::bin`]).
+    Bin,
 }
 
 impl Format {
-    pub const ALL: [Format; 11] = [
+    pub const ALL: [Format; 14] = [
         Format::Exr,
         Format::Ktx2,
         Format::Ktx2Zstd,
@@ -66,6 +73,9 @@ impl Format {
         Format::Glsl,
         Format::Hlsl,
         Format::Wgsl,
+        Format::Npy,
+        Format::Npz,
+        Format::Bin,
     ];
 
     pub fn name(self) -> &'static str {
@@ -81,6 +91,9 @@ impl Format {
             Format::Glsl => "glsl",
             Format::Hlsl => "hlsl",
             Format::Wgsl => "wgsl",
+            Format::Npy => "npy",
+            Format::Npz => "npz",
+            Format::Bin => "bin",
         }
     }
 
@@ -1148,7 +1161,9 @@ fn kind_of(v: &serde_json::Value) -> &'static str {
     }
 }
 
-fn valid_name(s: &str) -> bool {
+/// Whether `s` is a valid preset or table name (a file stem and output folder): 1-64
+/// characters from a-z, A-Z, 0-9, '-', '_', not starting with '-'.
+pub fn valid_name(s: &str) -> bool {
     !s.is_empty()
         && s.len() <= 64
         && !s.starts_with('-')

@@ -139,6 +139,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/materialx-albedo-table.json"),
     ),
     (
+        "nvdiffrec-bsdf-256",
+        include_str!("../presets/engines/nvdiffrec-bsdf-256.json"),
+    ),
+    (
         "threejs-dfg-lut",
         include_str!("../presets/engines/threejs-dfg-lut.json"),
     ),

@@ -77,6 +77,11 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
             Format::H | Format::Rs => channels * TEXT_BYTES_PER_VALUE,
             // a lookup function: no texels
             Format::Glsl | Format::Hlsl | Format::Wgsl => 0,
+            // the stored texels (after f16 values or unorm codes of 2 bytes), and each
+            // container's copy of them: the .npy, and the .npz's .npy and archive
+            Format::Bin => channels * (stored + 2),
+            Format::Npy => channels * (2 * stored + 2),
+            Format::Npz => channels * (3 * stored + 2),
         };
     }
     Estimate {

@@ -1804,3 +1804,198 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
         failures.join("\n")
     );
 }
+
+/// Fitted functions (`brdfbake fit`) on the software GPU: fits of the split sum (the search's
+/// best global polynomial in 2^(kμ), and one in the corner pair √(μ/(μ + α)), √(μ + α)), emitted as WGSL and evaluated in a WebGPU compute shader at
+/// points the fit never saw, against the exact integral. The bound per channel: the fit's
+/// stated max error (on the validation grid; 5% more between its points, as
+/// tests/fit_functions.rs argues) plus its f32 bound scaled for the GPU's arithmetic — the
+/// bound assumes correctly rounded operations (half an ULP each); WGSL's `exp2` is accurate
+/// to 3 + 2|x| ULP (|x| ≤ 10 here: 23 ULP, 46 half-ULPs), every other operation to ≤ 2.5 ULP,
+/// so 46× the bound covers every operation — plus the quadrature tolerance. A variant with
+/// one coefficient changed must fail, so the comparison can catch a wrong function.
+#[test]
+fn fitted_functions_evaluate_within_their_stated_error_on_a_software_gpu() {
+    use brdfbake::encode::function;
+    use brdfbake::fit::search::{self, Limits, Weight};
+    use brdfbake::fit::target;
+    use brdfbake::fit::vars::Var;
+    if !judges::chromium() {
+        return;
+    }
+    let Some(three) = judges::three_js() else {
+        return;
+    };
+    let (_, text) = brdfbake::presets::BUILTIN
+        .iter()
+        .find(|(n, _)| *n == "karis-envbrdf")
+        .unwrap();
+    let mut spec = brdfbake::preset::parse(text, "karis-envbrdf", "karis-envbrdf")
+        .unwrap()
+        .tables[0]
+        .spec
+        .clone();
+    for a in &mut spec.axes {
+        a.size = 32;
+    }
+    let t = target::build(&spec, None).unwrap();
+    let limits = Limits {
+        degree: [8, 6, 3],
+        cells: 3,
+        floor: 1e-6,
+    };
+    let front = search::search(&t, Weight::Absolute, true, &limits, &|| false);
+    let global = front
+        .iter()
+        .filter(|c| c.description.contains("exp2") && !c.description.contains("cells"))
+        .min_by(|a, b| a.max_total().total_cmp(&b.max_total()))
+        .expect("a global fit in 2^(k mu)");
+    // a global polynomial in the corner pair (square roots and a quotient of clamped inputs)
+    let corner = search::fit_polynomial(
+        &t,
+        Weight::Absolute,
+        &[
+            Var::CornerAngle {
+                mu: 0,
+                rough: 1,
+                square: true,
+            },
+            Var::CornerRadius {
+                mu: 0,
+                rough: 1,
+                square: true,
+            },
+        ],
+        5,
+    )
+    .expect("a fit in the corner pair");
+    // points off the validation grid: a splitmix stream, plus the domain's corners
+    let mut state = 12345u64;
+    let mut next = || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut pts: Vec<[f64; 2]> = (0..256)
+        .map(|_| [(next() as f32) as f64, (next() as f32) as f64])
+        .collect();
+    pts.extend([[1e-6, 0.0], [1e-6, 1.0], [1.0, 0.0], [1.0, 1.0]]);
+    let exact: Vec<Vec<f64>> = pts
+        .iter()
+        .map(|x| target::exact_at(&spec, x, 1e-9).unwrap())
+        .collect();
+    let flat: Vec<f32> = pts
+        .iter()
+        .flat_map(|x| [x[0] as f32, x[1] as f32])
+        .collect();
+    let mut list = Vec::new();
+    let mut expect = Vec::new();
+    for (name, c, broken) in [
+        ("global", global, false),
+        ("corner pair", &corner, false),
+        ("global, one coefficient changed", global, true),
+    ] {
+        let mut fitted = c.fitted.clone();
+        if broken {
+            // the constant term of the first channel off by 0.05: a fit no longer within
+            // its stated error near its worst points
+            match &mut fitted.form {
+                brdfbake::fit::form::Form::Polynomial { channels } => channels[0].coef[0] += 0.05,
+                _ => unreachable!("a global polynomial"),
+            }
+        }
+        let p = fitted.program(&t.inputs, &t.channels);
+        let wgsl = function::encode(&function::Wgsl, "fit", &p, &["test".into()]);
+        let n = p.outputs.len();
+        let widen = match n {
+            1 => "vec4<f32>(y, 0.0, 0.0, 0.0)".to_string(),
+            2 => "vec4<f32>(y, 0.0, 0.0)".to_string(),
+            _ => panic!("{n} outputs"),
+        };
+        let allowed: Vec<f64> = (0..n)
+            .map(|k| 1.05 * c.error[k] + 46.0 * c.f32_bound[k] + 1e-9)
+            .collect();
+        list.push(
+            json!({"id": list.len(), "name": "fit", "wgsl": wgsl, "widen": widen,
+               "points": flat}),
+        );
+        expect.push((name, n, allowed, broken, p));
+    }
+    let gpu_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gpu");
+    let index = std::fs::read_to_string(gpu_dir.join("index.html"))
+        .unwrap()
+        .replace("/harness.js", "/fit.js");
+    let mut files: HashMap<String, (Vec<u8>, &'static str)> = HashMap::new();
+    files.insert(
+        "/index.html".into(),
+        (index.into_bytes(), content_type("x.html")),
+    );
+    files.insert(
+        "/fit.js".into(),
+        (
+            std::fs::read(gpu_dir.join("fit.js")).unwrap(),
+            content_type("fit.js"),
+        ),
+    );
+    files.insert(
+        "/cases.json".into(),
+        (
+            Value::Array(list).to_string().into_bytes(),
+            "application/json",
+        ),
+    );
+    let site = Arc::new(Site {
+        files,
+        three,
+        results: Mutex::new(Results::default()),
+        changed: Condvar::new(),
+    });
+    let (results, log) = run_browser(site);
+    let info = results.done.clone().unwrap().unwrap_or_else(|e| {
+        panic!("the page failed: {e}\n{log}");
+    });
+    eprintln!("browser: {info}");
+    for (id, (name, n, allowed, broken, prog)) in expect.iter().enumerate() {
+        let values = match results.values.get(&id) {
+            Some(Ok(v)) => v,
+            Some(Err(e)) => panic!("{name}: {e}\n{log}"),
+            None => panic!("{name}: no result\n{log}"),
+        };
+        assert_eq!(values.len(), 4 * pts.len(), "{name}");
+        let mut worst = vec![0.0f64; *n];
+        let mut fails = 0;
+        for (i, e) in exact.iter().enumerate() {
+            for k in 0..*n {
+                let d = (values[4 * i + k] as f64 - e[k]).abs();
+                worst[k] = if d.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst[k].max(d)
+                };
+                if !within(d, allowed[k]) {
+                    fails += 1;
+                    if !broken {
+                        eprintln!(
+                            "  {name} at {:?} channel {k}: GPU {} CPU f32 {} exact {}",
+                            pts[i],
+                            values[4 * i + k],
+                            prog.eval_f32(&pts[i])[k],
+                            e[k]
+                        );
+                    }
+                }
+            }
+        }
+        eprintln!("fit {name}: largest |GPU - exact| {worst:?}, allowed {allowed:?}, {fails} over");
+        if *broken {
+            assert!(
+                fails > 0,
+                "{name}: the comparison did not catch the changed coefficient"
+            );
+        } else {
+            assert_eq!(fails, 0, "{name}: {worst:?} > {allowed:?}\n{log}");
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! `brdfbake bake`: presets → textures.
 
 use super::CliError;
-use crate::pipeline::{bake_preset_until, write_files};
+use crate::pipeline::{bake_preset_until, write_files, BakedTable, Files};
 use crate::preset::{self, Format, LoadError, Preset};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -17,7 +17,8 @@ pub struct BakeArgs {
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
     /// Output formats for every table, overriding the presets' (comma-separated:
-    /// exr, ktx2, ktx2-zstd, dds, png, png-data, h, rs, glsl, hlsl, wgsl). The JSON sidecar is always written.
+    /// exr, ktx2, ktx2-zstd, dds, png, png-data, h, rs, glsl, hlsl, wgsl, npy, npz, bin). The
+    /// JSON sidecar is always written.
     #[arg(long, value_name = "LIST")]
     pub format: Option<String>,
     /// Print nothing but errors.
@@ -239,19 +240,20 @@ fn rebake_command(a: &BakeArgs) -> String {
     cmd.join(" ")
 }
 
-pub fn run(a: BakeArgs) -> Result<(), CliError> {
-    let formats = match &a.format {
-        Some(s) => Some(
-            crate::preset::Format::parse_list(s)
-                .map_err(|e| CliError::input(format!("--format: {e}")))?,
-        ),
-        None => None,
-    };
-    let presets = resolve(&a.presets)?;
-    // formats a table's storage cannot be written in (--format exr for a unorm table, …)
-    for p in &presets {
+/// `--format`, parsed.
+fn formats_of(a: &BakeArgs) -> Result<Option<Vec<Format>>, CliError> {
+    a.format
+        .as_deref()
+        .map(|s| Format::parse_list(s).map_err(|e| CliError::input(format!("--format: {e}"))))
+        .transpose()
+}
+
+/// The checks before any work: formats a table's storage cannot be written in (`--format exr`
+/// for a unorm table, …) and the memory the bake needs (`--max-memory`).
+fn admit(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result<(), CliError> {
+    for p in presets {
         for t in &p.tables {
-            t.check_formats(formats.as_deref().unwrap_or(&t.formats))
+            t.check_formats(formats.unwrap_or(&t.formats))
                 .map_err(|e| {
                     let flag = if formats.is_some() { "--format: " } else { "" };
                     CliError::input(format!("{flag}preset {}: {e}", p.name))
@@ -259,17 +261,21 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         }
     }
     // (--check reads what a bake would write, one file at a time: bounded by the same)
-    let estimate = crate::resources::estimate(&presets, formats.as_deref());
-    crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)?;
-    if a.check {
-        return check(&a, &presets, formats.as_deref());
-    }
-    // what does not work in the tables' engines (preset field `engine`), before the work
+    let estimate = crate::resources::estimate(presets, formats);
+    crate::resources::check(&estimate, a.guards.max_memory).map_err(CliError::input)
+}
+
+/// What does not work in the tables' engines (preset field `engine`): (preset, table,
+/// engine, warning).
+fn engine_warnings(
+    presets: &[Preset],
+    formats: Option<&[Format]>,
+) -> Vec<(String, String, &'static str, String)> {
     let mut warnings = Vec::new();
-    for p in &presets {
+    for p in presets {
         for t in &p.tables {
             let written = crate::preset::PresetTable {
-                formats: formats.clone().unwrap_or_else(|| t.formats.clone()),
+                formats: formats.map_or_else(|| t.formats.clone(), <[Format]>::to_vec),
                 ..t.clone()
             };
             let engine = t.engine.map_or("", |e| e.name());
@@ -278,6 +284,134 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
             }
         }
     }
+    warnings
+}
+
+/// Bakes every preset in memory on `--threads` threads within `--max-time`: the tables and
+/// the files to write. Nothing is written.
+fn bake_all(
+    a: &BakeArgs,
+    presets: &[Preset],
+    formats: Option<&[Format]>,
+    progress: &indicatif::ProgressBar,
+) -> Result<(Vec<BakedTable>, Files), CliError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads.map_or(0, usize::from))
+        .build()
+        .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
+    let time = crate::resources::estimate_time(presets);
+    crate::resources::check_time(&time, pool.current_num_threads(), a.guards.max_time)
+        .map_err(CliError::input)?;
+    let deadline = crate::deadline::Deadline::after(a.guards.max_time);
+    let mut all_baked = Vec::new();
+    let mut all_files = Vec::new();
+    for p in presets {
+        progress.set_message(format!("baking {}", p.name));
+        let (baked, files) = pool
+            .install(|| bake_preset_until(p, &a.out, formats, Some(&deadline)))
+            .map_err(|e| {
+                progress.finish_and_clear();
+                CliError::from(e)
+            })?;
+        progress.inc(p.tables.len() as u64);
+        all_baked.extend(baked);
+        all_files.extend(files);
+    }
+    progress.finish_and_clear();
+    Ok((all_baked, all_files))
+}
+
+/// What [`bake_in_memory`] baked: the tables and the files `bake` would write (paths under
+/// `--out`), with the engine warnings `bake` prints.
+#[derive(Debug)]
+pub struct InMemory {
+    pub tables: Vec<BakedTable>,
+    pub files: Files,
+    /// `PRESET/TABLE (engine ENGINE): WARNING`, as `bake` prints them.
+    pub warnings: Vec<String>,
+    /// (preset, table, warning) of the same, for [`summary_json`].
+    pub table_warnings: Vec<(String, String, String)>,
+}
+
+/// Bakes `presets` as `bake` does with the flags of `a` — the same checks, guards
+/// (`--max-memory`, `--max-time`), threads, formats and errors — and returns the tables and
+/// the files instead of writing them (`a.presets`, `--check`, `--json` and `--quiet` are not
+/// read). For embedders: the Python module, whose presets may not be files.
+pub fn bake_in_memory(a: &BakeArgs, presets: &[Preset]) -> Result<InMemory, CliError> {
+    let formats = formats_of(a)?;
+    admit(a, presets, formats.as_deref())?;
+    let warnings = engine_warnings(presets, formats.as_deref());
+    let (tables, files) = bake_all(
+        a,
+        presets,
+        formats.as_deref(),
+        &indicatif::ProgressBar::hidden(),
+    )?;
+    Ok(InMemory {
+        tables,
+        files,
+        warnings: warnings
+            .iter()
+            .map(|(p, t, e, w)| format!("{p}/{t} (engine {e}): {w}"))
+            .collect(),
+        table_warnings: warnings.into_iter().map(|(p, t, _, w)| (p, t, w)).collect(),
+    })
+}
+
+/// The document `bake --json` prints: what was baked into `out`, in `seconds`, with each
+/// table's warnings ((preset, table, warning)).
+pub fn summary_json(
+    out: &Path,
+    seconds: f64,
+    baked: &[BakedTable],
+    warnings: &[(String, String, String)],
+) -> serde_json::Value {
+    let tables: Vec<serde_json::Value> = baked
+        .iter()
+        .map(|b| {
+            let err: serde_json::Map<String, serde_json::Value> = b
+                .lut
+                .channels
+                .iter()
+                .zip(&b.lut.error_estimate)
+                .map(|(c, e)| (c.name.clone(), serde_json::json!(e)))
+                .collect();
+            let w: Vec<&str> = warnings
+                .iter()
+                .filter(|(p, t, _)| *p == b.preset && *t == b.table)
+                .map(|(_, _, w)| w.as_str())
+                .collect();
+            serde_json::json!({
+                "preset": b.preset,
+                "table": b.table,
+                "warnings": w,
+                "size": b.lut.axes.iter().map(|x| x.size).collect::<Vec<_>>(),
+                "axes": b.lut.axes.iter().map(|x| x.name.clone()).collect::<Vec<_>>(),
+                "channels": b.lut.channels.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
+                "seconds": b.elapsed.as_secs_f64(),
+                "evaluations": b.lut.evaluations,
+                "estimated_max_error": err,
+                "ltc_fit_lit_error": b.fit_lit_max.map(|(median, max)| serde_json::json!({"median": median, "max": max})),
+                "files": b.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "generator": {"name": "brdfbake", "version": crate::meta::VERSION},
+        "out": out.display().to_string(),
+        "seconds": seconds,
+        "tables": tables,
+    })
+}
+
+pub fn run(a: BakeArgs) -> Result<(), CliError> {
+    let formats = formats_of(&a)?;
+    let presets = resolve(&a.presets)?;
+    admit(&a, &presets, formats.as_deref())?;
+    if a.check {
+        return check(&a, &presets, formats.as_deref());
+    }
+    let warnings = engine_warnings(&presets, formats.as_deref());
     if !a.quiet && !a.json {
         for (p, t, engine, w) in &warnings {
             let line = format!("{p}/{t} (engine {engine}): {w}");
@@ -285,74 +419,20 @@ pub fn run(a: BakeArgs) -> Result<(), CliError> {
         }
     }
     let started = Instant::now();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads.map_or(0, usize::from))
-        .build()
-        .map_err(|e| CliError::env(format!("cannot start worker threads: {e}")))?;
-    let time = crate::resources::estimate_time(&presets);
-    crate::resources::check_time(&time, pool.current_num_threads(), a.guards.max_time)
-        .map_err(CliError::input)?;
-    let deadline = crate::deadline::Deadline::after(a.guards.max_time);
     // Bake everything in memory first, then write all presets' files in one atomic set:
     // a failure anywhere leaves every previous output as it was.
-    let to_err = CliError::from;
-    let mut all_baked = Vec::new();
-    let mut all_files = Vec::new();
     let progress = progress_bar(&a, &presets);
-    for p in &presets {
-        progress.set_message(format!("baking {}", p.name));
-        let (baked, files) = match pool
-            .install(|| bake_preset_until(p, &a.out, formats.as_deref(), Some(&deadline)))
-        {
-            Ok(r) => r,
-            Err(e) => {
-                progress.finish_and_clear();
-                return Err(to_err(e));
-            }
-        };
-        progress.inc(p.tables.len() as u64);
-        all_baked.extend(baked);
-        all_files.extend(files);
-    }
-    progress.finish_and_clear();
-    write_files(&all_files).map_err(to_err)?;
+    let (all_baked, all_files) = bake_all(&a, &presets, formats.as_deref(), &progress)?;
+    write_files(&all_files).map_err(CliError::from)?;
     if a.json {
-        let tables: Vec<serde_json::Value> = all_baked
-            .iter()
-            .map(|b| {
-                let err: serde_json::Map<String, serde_json::Value> = b
-                    .lut
-                    .channels
-                    .iter()
-                    .zip(&b.lut.error_estimate)
-                    .map(|(c, e)| (c.name.clone(), serde_json::json!(e)))
-                    .collect();
-                let w: Vec<&str> = warnings
-                    .iter()
-                    .filter(|(p, t, _, _)| *p == b.preset && *t == b.table)
-                    .map(|(_, _, _, w)| w.as_str())
-                    .collect();
-                serde_json::json!({
-                    "preset": b.preset,
-                    "table": b.table,
-                    "warnings": w,
-                    "size": b.lut.axes.iter().map(|x| x.size).collect::<Vec<_>>(),
-                    "axes": b.lut.axes.iter().map(|x| x.name.clone()).collect::<Vec<_>>(),
-                    "channels": b.lut.channels.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
-                    "seconds": b.elapsed.as_secs_f64(),
-                    "evaluations": b.lut.evaluations,
-                    "estimated_max_error": err,
-                    "ltc_fit_lit_error": b.fit_lit_max.map(|(median, max)| serde_json::json!({"median": median, "max": max})),
-                    "files": b.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
-                })
-            })
-            .collect();
-        let doc = serde_json::json!({
-            "generator": {"name": "brdfbake", "version": crate::meta::VERSION},
-            "out": a.out.display().to_string(),
-            "seconds": started.elapsed().as_secs_f64(),
-            "tables": tables,
-        });
+        let warnings: Vec<(String, String, String)> =
+            warnings.into_iter().map(|(p, t, _, w)| (p, t, w)).collect();
+        let doc = summary_json(
+            &a.out,
+            started.elapsed().as_secs_f64(),
+            &all_baked,
+            &warnings,
+        );
         outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serializable")

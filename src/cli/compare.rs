@@ -32,38 +32,7 @@ const MAX_SHIPPED_BYTES: u64 = 1400 << 20;
 pub fn run(a: CompareArgs) -> Result<(), CliError> {
     let presets = super::bake::resolve(std::slice::from_ref(&a.preset))?;
     let preset = &presets[0];
-    let t = match &a.table {
-        Some(n) => preset
-            .tables
-            .iter()
-            .find(|t| &t.spec.name == n)
-            .ok_or_else(|| {
-                CliError::input(format!(
-                    "--table {n}: preset {} has no such table (its tables: {})",
-                    preset.name,
-                    preset
-                        .tables
-                        .iter()
-                        .map(|t| t.spec.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ))
-            })?,
-        None => match preset.tables.as_slice() {
-            [t] => t,
-            ts => {
-                return Err(CliError::input(format!(
-                    "preset {} has {} tables: name one with --table ({})",
-                    preset.name,
-                    ts.len(),
-                    ts.iter()
-                        .map(|t| t.spec.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )))
-            }
-        },
-    };
+    let t = pick_table(preset, a.table.as_deref())?;
     if t.shipped.is_none() {
         return Err(CliError::input(format!(
             "preset {}: table {} has no `shipped` description (how the engine's file holds it): compare takes an engine preset (brdfbake list shows them)",
@@ -123,6 +92,43 @@ pub fn run(a: CompareArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The table `table` names in `preset`, or its only table.
+pub(super) fn pick_table<'p>(
+    preset: &'p crate::preset::Preset,
+    table: Option<&str>,
+) -> Result<&'p crate::preset::PresetTable, CliError> {
+    let names = || {
+        preset
+            .tables
+            .iter()
+            .map(|t| t.spec.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match table {
+        Some(n) => preset
+            .tables
+            .iter()
+            .find(|t| t.spec.name == n)
+            .ok_or_else(|| {
+                CliError::input(format!(
+                    "--table {n}: preset {} has no such table (its tables: {})",
+                    preset.name,
+                    names()
+                ))
+            }),
+        None => match preset.tables.as_slice() {
+            [t] => Ok(t),
+            ts => Err(CliError::input(format!(
+                "preset {} has {} tables: name one with --table ({})",
+                preset.name,
+                ts.len(),
+                names()
+            ))),
+        },
+    }
 }
 
 fn stats_line(s: &crate::engines::compare::Stats, dims: usize) -> String {

@@ -77,7 +77,7 @@ fn albedo_table(
                 return None;
             }
             // (the rules inside stop refining once it passes: crate::quadrature::budget)
-            crate::deadline::scoped(*deadline, || row(m, i, n, &phis, tol))
+            crate::deadline::scoped(deadline, || row(m, i, n, &phis, tol))
         })
         .collect();
     if deadline.passed() {

@@ -3,10 +3,13 @@
 
 /// `println!` that returns a [`CliError`] (exit 1) when stdout cannot be written (a full
 /// disk, `> /dev/full`) instead of panicking. For functions returning `Result<_, CliError>`.
+/// Under [`run_captured`] the line goes to its buffer instead.
 macro_rules! outln {
+    () => {
+        outln!("")
+    };
     ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::cli::stdout_error)?
+        $crate::cli::out_line(format_args!($($arg)*)).map_err($crate::cli::stdout_error)?
     }};
 }
 
@@ -15,6 +18,7 @@ mod compare;
 mod completions;
 mod error;
 mod eval;
+mod fit;
 mod guards;
 mod inspect;
 mod laws;
@@ -25,10 +29,12 @@ mod probe;
 mod report;
 mod verify;
 
+pub use bake::{bake_in_memory, resolve as resolve_presets, summary_json, BakeArgs, InMemory};
 pub(crate) use error::{bake_error, stdout_error};
 pub use error::{CliError, EXIT_FAILURE, EXIT_INPUT, EXIT_OK};
 
 use clap::{Parser, Subcommand};
+use std::cell::RefCell;
 use std::ffi::OsString;
 
 #[derive(Parser, Debug)]
@@ -55,6 +61,8 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Compute a quantity directly (D, G1, G2, E, E_avg, split sum, sheen), without a table.
     Eval(eval::EvalArgs),
+    /// Minimax fits of a table as shader functions: the Pareto front, errors against the exact integral.
+    Fit(fit::FitArgs),
     /// Recompute a spread of texels at high accuracy; exit 1 over the tolerance.
     Verify(verify::VerifyArgs),
     /// Compare an engine's shipped table with exact values at its texels, beside brdfbake's.
@@ -69,6 +77,79 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Print the man page (roff), of brdfbake or of one subcommand.
     Man(completions::ManArgs),
+}
+
+thread_local! {
+    /// The output buffer of the [`run_captured`] call running on this thread.
+    static CAPTURED: RefCell<Option<Vec<u8>>> = const { RefCell::new(None) };
+}
+
+/// Writes one line of a command's output: to stdout, or to [`run_captured`]'s buffer.
+pub(crate) fn out_line(line: std::fmt::Arguments) -> std::io::Result<()> {
+    use std::io::Write as _;
+    CAPTURED.with_borrow_mut(|buf| match buf {
+        Some(buf) => writeln!(buf, "{line}"),
+        None => writeln!(std::io::stdout().lock(), "{line}"),
+    })
+}
+
+/// Parses the command line (`args[0]` the program name) as [`run`] does: a usage error is
+/// bad input, with clap's message (without its `error: ` prefix and its closing pointer to
+/// `--help`).
+pub fn parse<I: IntoIterator<Item = OsString>>(args: I) -> Result<Cli, CliError> {
+    Cli::try_parse_from(args).map_err(|e| {
+        let text = e.render().to_string();
+        let text = text.strip_prefix("error: ").unwrap_or(&text).trim_end();
+        let text = text
+            .strip_suffix("For more information, try '--help'.")
+            .unwrap_or(text)
+            .trim_end();
+        CliError {
+            code: if e.use_stderr() { EXIT_INPUT } else { EXIT_OK },
+            msg: text.to_string(),
+        }
+    })
+}
+
+/// Runs the CLI on `args` as [`run`] does, for embedders (the Python module): what the
+/// command printed on stdout is returned instead (its `--json` document), and its error is
+/// returned with whatever it printed before failing (`verify`'s document before exit 1).
+/// `--help` and `--version` are returned as the text they print.
+pub fn run_captured<I: IntoIterator<Item = OsString>>(
+    args: I,
+) -> Result<String, (CliError, String)> {
+    let cli = match parse(args) {
+        Ok(c) => c,
+        Err(e) if e.code == EXIT_OK => return Ok(e.msg + "\n"),
+        Err(e) => return Err((e, String::new())),
+    };
+    let previous = CAPTURED.replace(Some(Vec::new()));
+    let r = execute(cli);
+    let out = CAPTURED.replace(previous).unwrap_or_default();
+    let out = String::from_utf8_lossy(&out).into_owned();
+    match r {
+        Ok(()) => Ok(out),
+        Err(e) => Err((e, out)),
+    }
+}
+
+/// Runs one parsed command.
+fn execute(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Command::Bake(a) => bake::run(a),
+        Command::List(a) => list::run(a),
+        Command::Inspect(a) => inspect::run(a),
+        Command::Probe(a) => probe::run(a),
+        Command::Eval(a) => eval::run(a),
+        Command::Verify(a) => verify::run(a),
+        Command::Fit(a) => fit::run(a),
+        Command::Report(a) => report::run(a),
+        Command::Compare(a) => compare::run(a),
+        Command::Laws(a) => laws::run(a),
+        Command::Measured(a) => measured::run(a),
+        Command::Completions(a) => completions::run(a, <Cli as clap::CommandFactory>::command()),
+        Command::Man(a) => completions::run_man(a, <Cli as clap::CommandFactory>::command()),
+    }
 }
 
 /// Runs the CLI and returns the process exit code.
@@ -87,21 +168,7 @@ pub fn run<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
             return code;
         }
     };
-    let r = match cli.command {
-        Command::Bake(a) => bake::run(a),
-        Command::List(a) => list::run(a),
-        Command::Inspect(a) => inspect::run(a),
-        Command::Probe(a) => probe::run(a),
-        Command::Eval(a) => eval::run(a),
-        Command::Verify(a) => verify::run(a),
-        Command::Report(a) => report::run(a),
-        Command::Compare(a) => compare::run(a),
-        Command::Laws(a) => laws::run(a),
-        Command::Measured(a) => measured::run(a),
-        Command::Completions(a) => completions::run(a, <Cli as clap::CommandFactory>::command()),
-        Command::Man(a) => completions::run_man(a, <Cli as clap::CommandFactory>::command()),
-    };
-    match r {
+    match execute(cli) {
         Ok(()) => EXIT_OK,
         Err(e) => {
             eprintln!("error: {}", error::terminal_safe(&e.msg));

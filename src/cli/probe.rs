@@ -263,7 +263,7 @@ pub fn run(a: ProbeArgs) -> Result<(), CliError> {
         if reversed {
             notes.push("--polygon is wound clockwise as seen from the shading point: the light is taken as two-sided (its vertices reversed)".into());
         }
-        let r = crate::deadline::scoped(deadline, || {
+        let r = crate::deadline::scoped(&deadline, || {
             crate::table::ltc::lit_probe(
                 &table.spec,
                 &kind_x,

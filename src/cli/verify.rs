@@ -298,6 +298,19 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
     }
     let p = Path::new(&a.target);
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
+    // a fit's sidecar (`brdfbake fit --max-error`): its function against the exact integral
+    if ext == "json" && p.is_file() {
+        let head = crate::input::read_head(p, 4096).unwrap_or_default();
+        if String::from_utf8_lossy(&head).contains("\"brdfbake.fit/1\"") {
+            let bytes = crate::input::read_regular(p, 64 << 20, "a fit sidecar")
+                .map_err(|e| CliError::input(e.to_string()))?;
+            let doc: serde_json::Value = serde_json::from_slice(&bytes)
+                .map_err(|e| CliError::input(format!("{}: not JSON: {e}", p.display())))?;
+            if doc["schema"] == "brdfbake.fit/1" {
+                return super::fit::verify_sidecar(p, &doc, a.json, &a.guards);
+            }
+        }
+    }
     if p.is_file() && !matches!(ext, "json" | "exr" | "ktx2" | "dds" | "png") {
         return Err(CliError::input(format!(
             "{}: not a file verify reads: give a preset (a name or a .json file), a .exr, .ktx2, .dds or png-data .png \

@@ -308,33 +308,12 @@ pub fn read(bytes: &[u8]) -> Result<DdsImage, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lut::{Axis, Channel, Convention, Quantity};
 
+    /// A table whose texels ramp from 0 (every value distinct).
     fn table(sizes: &[usize], nc: usize) -> Lut {
         let n: usize = sizes.iter().product();
-        Lut {
-            axes: sizes
-                .iter()
-                .map(|&size| Axis {
-                    name: "x".into(),
-                    quantity: Quantity::Cosine,
-                    size,
-                    range: [0.0, 1.0],
-                    convention: Convention::Centers,
-                    warp: Default::default(),
-                    clamp: None,
-                })
-                .collect(),
-            channels: (0..nc)
-                .map(|c| Channel {
-                    name: format!("c{c}"),
-                    meaning: String::new(),
-                })
-                .collect(),
-            data: (0..n * nc).map(|i| i as f32 / (n * nc) as f32).collect(),
-            error_estimate: vec![0.0; nc],
-            evaluations: 0,
-        }
+        let data = (0..n * nc).map(|i| i as f32 / (n * nc) as f32).collect();
+        crate::lut::test_table(sizes, nc, data)
     }
 
     /// `read` accepts what the encoder writes, with the shape it was given, and every single

@@ -2,9 +2,13 @@
 //! file. Encoders never touch the file system — writing is `crate::write`'s job — so the same
 //! input always gives the same bytes, and an encoding error leaves no half-written output.
 
+pub mod bin;
 pub mod dds;
 pub mod exr;
+pub mod function;
 pub mod ktx2;
+pub mod npy;
+pub mod npz;
 pub mod png;
 pub mod png_data;
 pub mod shader;

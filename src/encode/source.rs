@@ -208,25 +208,12 @@ impl Values {
             }
             Storage::F16 => {}
         }
-        let nc = lut.channels.len();
-        let halves: Vec<f16> = lut.data.iter().map(|&v| f16::from_f32(v)).collect();
-        if let Some(i) = halves.iter().position(|h| h.is_infinite()) {
-            let c = i % nc;
-            let largest = lut.data.iter().skip(c).step_by(nc).fold(0.0f32, |m, &v| {
-                if v.abs() > m.abs() {
-                    v
-                } else {
-                    m
-                }
-            });
-            return Err(EncodeError::Unrepresentable {
-                table: table.to_string(),
-                channel: lut.channels[c].name.clone(),
-                value: largest as f64,
-                format: "f16 (IEEE 754 binary16, largest finite value 65504)",
-            });
-        }
-        Ok(Values(halves.into_iter().map(Value::Half).collect()))
+        Ok(Values(
+            f16_values(table, lut)?
+                .into_iter()
+                .map(Value::Half)
+                .collect(),
+        ))
     }
 
     /// Writes the values, one block per table row (x varying), each block preceded by a
@@ -552,6 +539,34 @@ fn c_string(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+/// Every value of `lut` as IEEE 754 binary16, rounded to nearest (ties to even), or the
+/// error naming the channel whose largest value is beyond the f16 range (never an infinity).
+pub(crate) fn f16_values(table: &str, lut: &Lut) -> Result<Vec<f16>, EncodeError> {
+    let nc = lut.channels.len().max(1);
+    let halves: Vec<f16> = lut.data.iter().map(|&v| f16::from_f32(v)).collect();
+    if let Some(i) = halves.iter().position(|h| h.is_infinite()) {
+        let c = i % nc;
+        let largest =
+            lut.data.iter().skip(c).step_by(nc).fold(
+                0.0f32,
+                |m, &v| {
+                    if v.abs() > m.abs() {
+                        v
+                    } else {
+                        m
+                    }
+                },
+            );
+        return Err(EncodeError::Unrepresentable {
+            table: table.to_string(),
+            channel: lut.channels[c].name.clone(),
+            value: largest as f64,
+            format: "f16 (IEEE 754 binary16, largest finite value 65504)",
+        });
+    }
+    Ok(halves)
 }
 
 /// Checks what every encoder in this family needs: 1 to 3 axes of at least one texel, at

@@ -105,6 +105,9 @@ pub enum ShippedFormat {
     Png,
     /// An OpenEXR file of half or float channels, read in the channel order the file lists.
     Exr,
+    /// Raw little-endian 32-bit floats and nothing else (nvdiffrec's `bsdf_256_256.bin`):
+    /// exactly the table's values (after `offset` skipped ones), no more.
+    Bin,
 }
 
 /// How the numbers of a `text` file encode values.
@@ -259,6 +262,7 @@ impl Shipped {
                 image = Some(size);
                 (raw, kinds)
             }
+            ShippedFormat::Bin => (bin_values(bytes, name)?, vec![NumberKind::F32; nc]),
         };
         if let Some([w, h]) = image {
             let (nx, rows) = (dims[0], dims[1] * dims[2]);
@@ -270,6 +274,14 @@ impl Shipped {
             }
         }
         let want = self.offset + texels * nc;
+        if self.format == ShippedFormat::Bin && raw.len() != want {
+            return Err(format!(
+                "{name}: {} bytes hold {} float32 values, the table needs {want} ({texels} texels × {nc} channels{}): the file's table and the preset's axes differ",
+                bytes.len(),
+                raw.len(),
+                if self.offset > 0 { format!(" after {} skipped", self.offset) } else { String::new() }
+            ));
+        }
         if self.format == ShippedFormat::Text && self.symbol.is_some() && raw.len() != want {
             return Err(format!(
                 "{name}: the array {} holds {} values, the table needs {} ({texels} texels × {nc} channels{})",
@@ -504,6 +516,10 @@ impl Shipped {
             }
             ShippedFormat::Png => format!("a {}-channel PNG", self.channels.len()),
             ShippedFormat::Exr => format!("an OpenEXR file of {} channels", self.channels.len()),
+            ShippedFormat::Bin => format!(
+                "a raw little-endian float32 file of {} channels",
+                self.channels.len()
+            ),
         };
         match (&self.file, engine) {
             (Some(f), Some(e)) => format!("{what} ({e}'s {f}, or a brdfbake quotes file of it)"),
@@ -926,6 +942,20 @@ fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String
     ))
 }
 
+/// The values of a file of raw little-endian 32-bit floats.
+fn bin_values(bytes: &[u8], name: &str) -> Result<Vec<f64>, String> {
+    if !bytes.len().is_multiple_of(4) {
+        return Err(format!(
+            "{name}: {} bytes is not a whole number of float32 values (format bin: raw little-endian 32-bit floats)",
+            bytes.len()
+        ));
+    }
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64)
+        .collect())
+}
+
 /// The pixels of an EXR file's first layer, channels in the file's order, rows from the top
 /// of its data window (row 0 first).
 fn exr_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String> {
@@ -1039,6 +1069,34 @@ mod tests {
         let e = s.read(b"256 0", [2, 1, 1], "t").unwrap_err();
         assert!(e.contains("0..=255"), "{e}");
         assert!((srgb_to_linear(0.5) - 0.214041).abs() < 1e-6);
+    }
+
+    /// Raw float32: the values in order, exactly as many as the table has; another size or a
+    /// non-finite value is named.
+    #[test]
+    fn raw_float32_files() {
+        let s = shipped(r#"{"format": "bin", "channels": ["A", "B"]}"#);
+        let bytes: Vec<u8> = [0.25f32, 1.0, -2.5, 3e-9]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let t = s.read(&bytes, [2, 1, 1], "t.bin").unwrap();
+        assert_eq!(t.values, [0.25, 1.0, -2.5, 3e-9f32 as f64]);
+        let e = s.read(&bytes, [1, 1, 1], "t.bin").unwrap_err();
+        assert!(
+            e.contains("16 bytes hold 4 float32 values") && e.contains("needs 2"),
+            "{e}"
+        );
+        let e = s.read(&bytes[..15], [2, 1, 1], "t.bin").unwrap_err();
+        assert!(e.contains("15 bytes is not a whole number"), "{e}");
+        let nan: Vec<u8> = [0.0f32, f32::NAN]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let e = shipped(r#"{"format": "bin", "channels": ["E"]}"#)
+            .read(&nan, [2, 1, 1], "t.bin")
+            .unwrap_err();
+        assert!(e.contains("finite"), "{e}");
     }
 
     #[test]

@@ -40,10 +40,10 @@ pub struct PolygonLight {
 }
 
 /// Knuth's MMIX LCG, the top 53 bits as a uniform number in [0, 1).
-struct Lcg(u64);
+pub(crate) struct Lcg(pub(crate) u64);
 
 impl Lcg {
-    fn next(&mut self) -> f64 {
+    pub(crate) fn next(&mut self) -> f64 {
         self.0 = self
             .0
             .wrapping_mul(6364136223846793005)
@@ -71,11 +71,107 @@ fn rotate(p: [f64; 3], k: [f64; 3], ang: f64) -> [f64; 3] {
     ]
 }
 
+/// The shape of a light in its plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// A rectangle of half-width `tan σ` and aspect ratio uniform in [0.25, 1].
+    Rectangle,
+    /// A triangle, vertices 120° ± 20° apart at radii `0.6…1 · tan σ`.
+    Triangle,
+}
+
+/// A light of half-extent `σ` (radians, seen from the origin) centred on the unit direction
+/// `c` at distance 1: its plane tilted from facing the origin by up to `max_tilt` about a
+/// random axis in it and spun in itself by a uniform angle, its shape drawn from `rng`.
+/// `None` when nothing of it is above the horizon. The draws from `rng` are in a fixed
+/// order, so a seed gives the same light on every machine.
+pub(crate) fn place_light(
+    rng: &mut Lcg,
+    c: [f64; 3],
+    sigma: f64,
+    max_tilt: f64,
+    shape: Shape,
+) -> Option<PolygonLight> {
+    // the plane's frame: normal n (towards the origin is −c), tilted
+    let (e1, e2) = {
+        let a = if c[2].abs() < 0.9 {
+            [0.0, 0.0, 1.0]
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        let e1 = unit(cross(a, c));
+        (e1, cross(c, e1))
+    };
+    let tilt = max_tilt * rng.next();
+    let tilt_axis_ang = 2.0 * PI * rng.next();
+    let axis = unit([
+        tilt_axis_ang.cos() * e1[0] + tilt_axis_ang.sin() * e2[0],
+        tilt_axis_ang.cos() * e1[1] + tilt_axis_ang.sin() * e2[1],
+        tilt_axis_ang.cos() * e1[2] + tilt_axis_ang.sin() * e2[2],
+    ]);
+    let spin = 2.0 * PI * rng.next();
+    let (u, v) = (
+        rotate(rotate(e1, c, spin), axis, tilt),
+        rotate(rotate(e2, c, spin), axis, tilt),
+    );
+    // in-plane 2D shape, half-extent tan σ at distance 1
+    let h = sigma.tan();
+    let shape: Vec<(f64, f64)> = if shape == Shape::Rectangle {
+        let aspect = 0.25 + 0.75 * rng.next();
+        let (w, hh) = (h, h * aspect);
+        vec![(-w, -hh), (w, -hh), (w, hh), (-w, hh)]
+    } else {
+        let base = 2.0 * PI * rng.next();
+        (0..3)
+            .map(|k| {
+                let ang = base
+                    + 2.0 * PI * k as f64 / 3.0
+                    + (rng.next() - 0.5) * 2.0 * (20f64).to_radians();
+                let rad = h * (0.6 + 0.4 * rng.next());
+                (rad * ang.cos(), rad * ang.sin())
+            })
+            .collect()
+    };
+    let mut verts: Vec<[f64; 3]> = shape
+        .iter()
+        .map(|&(x, y)| {
+            [
+                c[0] + x * u[0] + y * v[0],
+                c[1] + x * u[1] + y * v[1],
+                c[2] + x * u[2] + y * v[2],
+            ]
+        })
+        .collect();
+    // counterclockwise about the outward direction
+    let n = cross(
+        [
+            verts[1][0] - verts[0][0],
+            verts[1][1] - verts[0][1],
+            verts[1][2] - verts[0][2],
+        ],
+        [
+            verts[2][0] - verts[0][0],
+            verts[2][1] - verts[0][1],
+            verts[2][2] - verts[0][2],
+        ],
+    );
+    if dot(n, verts[0]) < 0.0 {
+        verts.reverse();
+    }
+    if verts.iter().all(|p| p[2] <= 0.0) {
+        return None;
+    }
+    let crosses_horizon = verts.iter().any(|p| p[2] <= 0.0);
+    Some(PolygonLight {
+        verts,
+        crosses_horizon,
+    })
+}
+
 /// The 200 lights of the test set (module doc).
 pub fn test_lights() -> Vec<PolygonLight> {
     let mut rng = Lcg(25);
     let mut out = Vec::with_capacity(200);
-    let mut i = 0usize;
     while out.len() < 200 {
         let quad = out.len() % 5 < 3;
         let phi = 2.0 * PI * rng.next();
@@ -83,83 +179,15 @@ pub fn test_lights() -> Vec<PolygonLight> {
         let sz = (1.0 - cz * cz).max(0.0).sqrt();
         let c = [sz * phi.cos(), sz * phi.sin(), cz];
         let sigma = (0.02f64.ln() + rng.next() * (0.8f64 / 0.02).ln()).exp();
-        // the plane's frame: normal n (towards the origin is −c), tilted
-        let (e1, e2) = {
-            let a = if c[2].abs() < 0.9 {
-                [0.0, 0.0, 1.0]
-            } else {
-                [1.0, 0.0, 0.0]
-            };
-            let e1 = unit(cross(a, c));
-            (e1, cross(c, e1))
-        };
-        let tilt = (60f64).to_radians() * rng.next();
-        let tilt_axis_ang = 2.0 * PI * rng.next();
-        let axis = unit([
-            tilt_axis_ang.cos() * e1[0] + tilt_axis_ang.sin() * e2[0],
-            tilt_axis_ang.cos() * e1[1] + tilt_axis_ang.sin() * e2[1],
-            tilt_axis_ang.cos() * e1[2] + tilt_axis_ang.sin() * e2[2],
-        ]);
-        let spin = 2.0 * PI * rng.next();
-        let (u, v) = (
-            rotate(rotate(e1, c, spin), axis, tilt),
-            rotate(rotate(e2, c, spin), axis, tilt),
-        );
-        // in-plane 2D shape, half-extent tan σ at distance 1
-        let h = sigma.tan();
-        let shape: Vec<(f64, f64)> = if quad {
-            let aspect = 0.25 + 0.75 * rng.next();
-            let (w, hh) = (h, h * aspect);
-            vec![(-w, -hh), (w, -hh), (w, hh), (-w, hh)]
+        let shape = if quad {
+            Shape::Rectangle
         } else {
-            let base = 2.0 * PI * rng.next();
-            (0..3)
-                .map(|k| {
-                    let ang = base
-                        + 2.0 * PI * k as f64 / 3.0
-                        + (rng.next() - 0.5) * 2.0 * (20f64).to_radians();
-                    let rad = h * (0.6 + 0.4 * rng.next());
-                    (rad * ang.cos(), rad * ang.sin())
-                })
-                .collect()
+            Shape::Triangle
         };
-        i += 1;
-        let mut verts: Vec<[f64; 3]> = shape
-            .iter()
-            .map(|&(x, y)| {
-                [
-                    c[0] + x * u[0] + y * v[0],
-                    c[1] + x * u[1] + y * v[1],
-                    c[2] + x * u[2] + y * v[2],
-                ]
-            })
-            .collect();
-        // counterclockwise about the outward direction
-        let n = cross(
-            [
-                verts[1][0] - verts[0][0],
-                verts[1][1] - verts[0][1],
-                verts[1][2] - verts[0][2],
-            ],
-            [
-                verts[2][0] - verts[0][0],
-                verts[2][1] - verts[0][1],
-                verts[2][2] - verts[0][2],
-            ],
-        );
-        if dot(n, verts[0]) < 0.0 {
-            verts.reverse();
+        if let Some(light) = place_light(&mut rng, c, sigma, 60f64.to_radians(), shape) {
+            out.push(light);
         }
-        if verts.iter().all(|p| p[2] <= 0.0) {
-            continue;
-        }
-        let crosses_horizon = verts.iter().any(|p| p[2] <= 0.0);
-        out.push(PolygonLight {
-            verts,
-            crosses_horizon,
-        });
     }
-    let _ = i;
     out
 }
 

@@ -332,7 +332,7 @@ mod tests {
         let ok = polygon_integral(&g, &quad, [0.0, 0.0, 1.0], 0.5, 1e-9).unwrap();
         assert!(ok.value > 0.0);
         let past = crate::deadline::Deadline::after(0.0);
-        let e = crate::deadline::scoped(past, || {
+        let e = crate::deadline::scoped(&past, || {
             polygon_integral(&g, &quad, [0.0, 0.0, 1.0], 0.5, 1e-9)
         })
         .unwrap_err();

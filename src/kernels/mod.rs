@@ -8,6 +8,7 @@ pub mod dielectric_average;
 pub mod ggx_polar;
 pub mod ltc_check;
 pub mod ltc_fit;
+pub mod ltc_lights;
 pub mod ltc_lm;
 pub mod ltc_polygon;
 pub mod ltc_probe;

@@ -793,4 +793,5 @@ pub fn channels(spec: &TableSpec) -> Vec<Channel> {
         TableKind::Ltc | TableKind::LtcSphere => ltc::channels(spec),
     }
 }
+pub mod ltc_heldout;
 pub mod ltc_layout;

@@ -49,6 +49,16 @@ pub fn openexr() -> bool {
     )
 }
 
+/// python3 with maturin and pytest (the Python package's build and tests: tests/python.rs),
+/// numpy and OpenEXR (which the pytest suite reads the CLI's EXR files with).
+pub fn python_wheel() -> bool {
+    available(
+        "maturin and pytest",
+        &["python3", "-c", "import maturin, pytest, numpy, OpenEXR"],
+        "python3 -m pip install -r scripts/test-requirements.txt",
+    )
+}
+
 /// Khronos' glslang reference compiler (GLSL ES, desktop and Vulkan GLSL, and HLSL).
 pub fn glslang() -> bool {
     available(
