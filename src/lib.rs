@@ -46,6 +46,7 @@ pub mod lut;
 pub mod merl;
 pub mod meta;
 pub mod model;
+pub mod names;
 pub mod numerics;
 pub mod numfmt;
 pub mod pipeline;

@@ -406,3 +406,55 @@ fn bake_warns_and_the_sidecar_records_the_engine() {
         serde_json::from_slice(&std::fs::read(d.join("out/q/t.json")).unwrap()).unwrap();
     assert!(side.get("engine").is_none());
 }
+
+/// `bake --engine NAME` bakes every preset of that engine, the same files as naming them;
+/// an unknown engine is exit 2 with the accepted names and nothing written.
+#[test]
+fn bake_by_engine_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = cli::run(d, &["bake", "--engine", "Three.js", "--out", "a", "-q"]);
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let o = cli::run(
+        d,
+        &["bake", "threejs-dfg-lut", "threejs-ltc", "--out", "b", "-q"],
+    );
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let (a, b) = (cli::snapshot(&d.join("a")), cli::snapshot(&d.join("b")));
+    assert!(a.len() >= 4, "{:?}", a.keys());
+    assert_eq!(
+        a, b,
+        "--engine three.js bakes what naming its presets bakes"
+    );
+    // a preset named and its engine's: each once
+    let o = cli::run(
+        d,
+        &[
+            "bake",
+            "threejs-ltc",
+            "--engine",
+            "threejs",
+            "--out",
+            "c",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    assert_eq!(cli::snapshot(&d.join("c")), a);
+    let o = cli::run(d, &["bake", "--engine", "godt", "--out", "e"]);
+    cli::assert_fails(
+        &o,
+        2,
+        &[
+            "--engine \"godt\"",
+            "Did you mean `godot`?",
+            "blender",
+            "threejs",
+        ],
+        "an unknown engine",
+    );
+    assert!(
+        !d.join("e").exists(),
+        "nothing written for an unknown engine"
+    );
+}

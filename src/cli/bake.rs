@@ -10,6 +10,11 @@ use std::time::Instant;
 pub struct BakeArgs {
     /// Preset names (from presets/ or built in) or preset file paths. Default: every preset.
     pub presets: Vec<String>,
+    /// Also bake every preset of these engines (comma-separated, e.g. `godot`, `threejs`,
+    /// `blender`; `brdfbake list` names them): the tables in the engine's own layouts and
+    /// formats.
+    #[arg(long, value_name = "NAME", value_delimiter = ',')]
+    pub engine: Vec<String>,
     /// Output directory.
     #[arg(long, default_value = DEFAULT_OUT)]
     pub out: PathBuf,
@@ -229,6 +234,10 @@ fn rebake_command(a: &BakeArgs) -> String {
     };
     let mut cmd = vec!["brdfbake".to_string(), "bake".to_string()];
     cmd.extend(a.presets.iter().map(|p| quote(p)));
+    if !a.engine.is_empty() {
+        cmd.push("--engine".into());
+        cmd.push(quote(&a.engine.join(",")));
+    }
     if a.out != std::path::Path::new(DEFAULT_OUT) {
         cmd.push("--out".into());
         cmd.push(quote(&a.out.display().to_string()));
@@ -406,7 +415,7 @@ pub fn summary_json(
 
 pub fn run(a: BakeArgs) -> Result<(), CliError> {
     let formats = formats_of(&a)?;
-    let presets = resolve(&a.presets)?;
+    let presets = resolve(&with_engines(&a.presets, &a.engine)?)?;
     admit(&a, &presets, formats.as_deref())?;
     if a.check {
         return check(&a, &presets, formats.as_deref());
@@ -489,6 +498,20 @@ fn progress_bar(a: &BakeArgs, presets: &[Preset]) -> indicatif::ProgressBar {
     pb
 }
 
+/// The preset names given, followed by the presets of the `--engine` names (each name once,
+/// in order).
+fn with_engines(presets: &[String], engines: &[String]) -> Result<Vec<String>, CliError> {
+    let mut names = presets.to_vec();
+    for e in engines {
+        for p in crate::engines::select::presets_of(e).map_err(CliError::input)? {
+            if !names.contains(&p) {
+                names.push(p);
+            }
+        }
+    }
+    Ok(names)
+}
+
 /// The presets directory searched first for preset names.
 pub const PRESET_DIR: &str = "presets";
 /// The engine presets' folder inside [`PRESET_DIR`]: baked by name, not by a bare `bake`.
@@ -561,7 +584,7 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
                     .iter()
                     .chain(crate::presets::ENGINES)
                     .map(|(n, _)| *n);
-                let hint = did_you_mean(a, known)
+                let hint = crate::names::did_you_mean(a, known)
                     .map(|n| format!(" Did you mean `{n}`?"))
                     .unwrap_or_default();
                 return Err(CliError::input(format!(
@@ -580,60 +603,4 @@ pub fn resolve(args: &[String]) -> Result<Vec<Preset>, CliError> {
         out.push(preset);
     }
     Ok(out)
-}
-
-/// The name of `known` nearest to `typed` by edit distance, when it is near enough to be a
-/// typo (at most a third of its letters, and at least one, differ).
-pub fn did_you_mean<'a>(typed: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    let typed_l = typed.to_lowercase();
-    let limit = (typed.chars().count() / 3).max(1);
-    known
-        .map(|k| (edit_distance(&typed_l, &k.to_lowercase()), k))
-        .filter(|(d, _)| *d <= limit)
-        .min_by_key(|(d, k)| (*d, *k))
-        .map(|(_, k)| k)
-}
-
-/// The Levenshtein distance of two strings, in characters.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != *cb))
-                .min(prev[j + 1] + 1)
-                .min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
-}
-
-#[cfg(test)]
-mod suggestion_tests {
-    use super::did_you_mean;
-
-    #[test]
-    fn typos_get_the_nearest_name() {
-        let known = [
-            "filament-dfg",
-            "karis-envbrdf",
-            "cycles-ggx-e",
-            "cycles-ggx-eavg",
-        ];
-        assert_eq!(
-            did_you_mean("filament-dgf", known.iter().copied()),
-            Some("filament-dfg")
-        );
-        assert_eq!(
-            did_you_mean("Filament-DFG", known.iter().copied()),
-            Some("filament-dfg")
-        );
-        assert_eq!(
-            did_you_mean("cycles-ggx-eav", known.iter().copied()),
-            Some("cycles-ggx-eavg")
-        );
-        assert_eq!(did_you_mean("something-else", known.iter().copied()), None);
-    }
 }

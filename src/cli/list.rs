@@ -70,6 +70,10 @@ pub fn run(a: ListArgs) -> Result<(), CliError> {
             "schema": "brdfbake.list/1",
             "presets": defaults,
             "engine_presets": engines,
+            "engines": crate::engines::select::engines()
+                .into_iter()
+                .map(|(k, v)| json!({"name": k, "presets": v}))
+                .collect::<Vec<_>>(),
             "table_kinds": kinds,
         });
         outln!(
@@ -117,6 +121,10 @@ pub fn run(a: ListArgs) -> Result<(), CliError> {
             what,
             sizes.join(", ")
         );
+    }
+    outln!("\nEngines (brdfbake bake --engine NAME bakes all of an engine's presets):");
+    for (k, v) in crate::engines::select::engines() {
+        outln!("  {:<12} {}", k, v.join(", "));
     }
     outln!("\nTable kinds:");
     for k in &kinds {

@@ -6,6 +6,7 @@
 
 pub mod compare;
 pub mod figures;
+pub mod select;
 pub mod shipped;
 
 use crate::lut::Lut;
