@@ -108,6 +108,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         axis_order: None,
         shipped: None,
         channels: None,
+        fit: None,
     };
     let attrs = meta::header_attributes("build", &table, &lut);
     let dir = out.join("build");

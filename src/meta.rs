@@ -66,6 +66,10 @@ pub fn inputs(table: &PresetTable) -> Value {
     if let Some(e) = table.engine {
         v["engine"] = json!(e.name());
     }
+    // (only when set, so that tables without it keep their hash)
+    if let Some(f) = &table.fit {
+        v["fit"] = fit_request_json(f);
+    }
     if let Some(a) = spec.cloth_alpha_min {
         v["cloth_alpha_min"] = json!(a);
     }
@@ -158,6 +162,18 @@ pub fn input_hash(table: &PresetTable) -> String {
     let d = h.finalize();
     let hex: String = d.iter().map(|b| format!("{b:02x}")).collect();
     format!("sha256:{hex}")
+}
+
+/// A table's `fit` request as the preset spells it (`max_error` or `max_ops`, `weight`,
+/// `emit`).
+fn fit_request_json(f: &crate::fit::emit::Request) -> Value {
+    let mut o = match f.goal {
+        crate::fit::emit::Goal::MaxError(e) => json!({ "max_error": e }),
+        crate::fit::emit::Goal::MaxOps(n) => json!({ "max_ops": n }),
+    };
+    o["weight"] = json!(f.weight.name());
+    o["emit"] = json!(f.emit);
+    o
 }
 
 fn quantity_name(a: &Axis) -> String {
@@ -546,6 +562,12 @@ pub fn metadata_with_fit(
     }
     if spec.kind.is_ltc() {
         v["ltc"] = ltc_section(table, fit);
+    }
+    // (only when set) the fit `bake` wrote beside the table, as the preset asked for it
+    if let Some(f) = &table.fit {
+        let mut o = fit_request_json(f);
+        o["sidecar"] = json!(format!("{}.fit.json", spec.name));
+        v["fit"] = o;
     }
     // (only when set: tables without an engine keep their sidecars)
     if let Some(e) = table.engine {

@@ -246,6 +246,12 @@ pub fn bake_preset_until(
         let jpath = dir.join(format!("{}.json", t.spec.name));
         paths.push(jpath.clone());
         files.push((jpath, sidecar));
+        if let Some(req) = &t.fit {
+            for (path, bytes) in fit_files(&preset.name, t, req, &dir, deadline)? {
+                paths.push(path.clone());
+                files.push((path, bytes));
+            }
+        }
         let fit_lit_max = fit.as_ref().and_then(|f| {
             let c = f.channels.iter().position(|c| c.name == "lit_max")?;
             let nc = f.channels.len();
@@ -269,6 +275,41 @@ pub fn bake_preset_until(
         });
     }
     Ok((baked, files))
+}
+
+/// The files of a table's `fit` (`TABLE.fit.{glsl,…}` and the sidecar `TABLE.fit.json`,
+/// which carries the table's input hash for `bake --check`): the fit of its exact function
+/// that the request asks for, or the error that none does (exit 1, as a table that misses
+/// its tolerance).
+fn fit_files(
+    preset: &str,
+    t: &PresetTable,
+    req: &crate::fit::emit::Request,
+    dir: &Path,
+    deadline: Option<&crate::deadline::Deadline>,
+) -> Result<Files, PipelineError> {
+    let what = format!("preset {preset}: table {}: fit", t.spec.name);
+    let (tg, front) = crate::fit::emit::front(&t.spec, req.weight, deadline)
+        .map_err(|m| PipelineError::Input(format!("{what}: {m}")))?
+        .ok_or_else(|| PipelineError::Failed(format!("{what}: stopped at the time limit")))?;
+    let c = crate::fit::emit::choose(&front, req.goal, &format!("{preset}/{}", t.spec.name))
+        .map_err(|m| PipelineError::Failed(format!("preset {preset}: {m}")))?;
+    let mut extra = serde_json::Map::new();
+    extra.insert(
+        "input_hash".into(),
+        serde_json::Value::String(meta::input_hash(t)),
+    );
+    Ok(crate::fit::emit::files(
+        preset,
+        &t.spec.name,
+        &tg,
+        req.weight,
+        c,
+        &req.emit,
+        dir,
+        &format!("{}.fit", t.spec.name),
+        extra,
+    ))
 }
 
 /// Refuses a table whose stored values (value × scale, rounded to the storage type) lose

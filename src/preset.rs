@@ -256,6 +256,10 @@ pub struct PresetTable {
     /// kind's channels as computed. Engines differ (the glTF Sample Viewer's Charlie LUT
     /// holds its value in B, BSDL stores 1 − E).
     pub channels: Option<Vec<StoredChannel>>,
+    /// A fit of the table's exact function to emit beside it (`fit`: `{"max_error": E}` or
+    /// `{"max_ops": N}`, [`crate::fit::emit`]): `bake` writes `TABLE.fit.{glsl,…}` and the
+    /// fit's sidecar `TABLE.fit.json`, and fails when no fit meets the request.
+    pub fit: Option<crate::fit::emit::Request>,
 }
 
 /// One stored channel of a table whose preset sets `channels`: what texture component k
@@ -582,6 +586,8 @@ struct RawTable {
     channels: Option<Vec<String>>,
     #[serde(default)]
     ltc: Option<RawLtc>,
+    #[serde(default)]
+    fit: Option<crate::fit::emit::RawRequest>,
 }
 
 /// The `ltc` object of an `ltc` table.
@@ -982,6 +988,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             axis_order,
             shipped: None,
             channels,
+            fit: None,
         };
         if let Some(mut sh) = t.shipped {
             // the file's channels name stored channels: by their names (R, G, … when the
@@ -1010,6 +1017,12 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
             sh.validate_degenerate(&axes)
                 .map_err(|m| field(at("shipped"), m))?;
             table.shipped = Some(sh);
+        }
+        if let Some(f) = &t.fit {
+            let req = f.check().map_err(|m| field(at("fit"), m))?;
+            crate::fit::emit::points(&table.spec)
+                .map_err(|m| field(at("fit"), format!("this table cannot be fitted: {m}")))?;
+            table.fit = Some(req);
         }
         tables.push(table);
     }

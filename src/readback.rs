@@ -592,6 +592,11 @@ pub fn table_from_sidecar(v: &Value) -> Result<PresetTable, String> {
     if let Some(e) = get(&["engine", "name"]) {
         t.insert("engine".into(), e.clone());
     }
+    if let Some(Value::Object(f)) = get(&["fit"]) {
+        let mut f = f.clone();
+        f.remove("sidecar");
+        t.insert("fit".into(), Value::Object(f));
+    }
     t.insert("axis_order".into(), Value::Array(order));
     // the preset's `channels`, which each stored channel states when it was set
     let stores: Vec<Value> = get(&["channels"])

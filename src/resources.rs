@@ -84,10 +84,16 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
             Format::Npz => channels * (3 * stored + 2),
         };
     }
+    // a fit's search (`fit`): its validation points' rows, while the table is kept
+    let fit_scratch = t.fit.as_ref().map_or(0, |_| {
+        crate::fit::emit::points(&t.spec).map_or(0, |n| {
+            (n as u64).saturating_mul(crate::fit::emit::BYTES_PER_POINT)
+        })
+    });
     Estimate {
         texels,
         kept: texels.saturating_mul(per_texel).saturating_add(PER_TABLE),
-        scratch: texels.saturating_mul(SCRATCH_PER_TEXEL),
+        scratch: texels.saturating_mul(SCRATCH_PER_TEXEL).max(fit_scratch),
     }
 }
 
@@ -346,9 +352,19 @@ pub fn estimate_table_time(t: &PresetTable) -> TimeEstimate {
         0.0
     };
     let evaluations = texels * per_texel + rows * per_row + g1_builds * EVALS_PER_NUMERIC_G1;
+    // a fit (`fit`): its exact values at the validation points are a table of those points,
+    // and its search costs per point
+    let fit_seconds = t.fit.as_ref().map_or(0.0, |_| {
+        crate::fit::emit::points(&t.spec).map_or(0.0, |n| {
+            let per_point = per_texel * SECONDS_PER_EVALUATION;
+            n as f64 * (per_point + crate::fit::emit::SECONDS_PER_POINT)
+        })
+    });
     TimeEstimate {
         evaluations,
-        cpu_seconds: evaluations * SECONDS_PER_EVALUATION + texels * SECONDS_PER_CLOSED_FORM_TEXEL,
+        cpu_seconds: evaluations * SECONDS_PER_EVALUATION
+            + texels * SECONDS_PER_CLOSED_FORM_TEXEL
+            + fit_seconds,
     }
 }
 

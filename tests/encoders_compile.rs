@@ -125,6 +125,7 @@ fn attributes(spec: &TableSpec, lut: &Lut) -> Vec<(String, String)> {
         axis_order: None,
         shipped: None,
         channels: None,
+        fit: None,
     };
     let mut a = brdfbake::meta::header_attributes("unit-test", &table, lut);
     a.push((

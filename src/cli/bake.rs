@@ -172,6 +172,35 @@ fn check(a: &BakeArgs, presets: &[Preset], formats: Option<&[Format]>) -> Result
                     bad(path, format!("damaged or stale: {e}"));
                 }
             }
+            // a `fit`: its sidecar names the table's input hash, and its functions exist
+            if let Some(req) = &t.fit {
+                let fpath = dir.join(format!("{}.fit.json", t.spec.name));
+                let Some(bytes) = read(&fpath)? else {
+                    bad(fpath, "missing (the preset asks for a fit)".into());
+                    continue;
+                };
+                let doc: Option<serde_json::Value> = serde_json::from_slice(&bytes).ok();
+                let have = doc
+                    .as_ref()
+                    .and_then(|d| d.get("input_hash"))
+                    .and_then(|h| h.as_str())
+                    .unwrap_or("(none)");
+                if have != want {
+                    bad(
+                        fpath,
+                        format!("stale: input hash {have} differs from the preset's {want}"),
+                    );
+                    continue;
+                }
+                for l in &req.emit {
+                    if let Some(d) = crate::encode::function::dialect(l) {
+                        let p = dir.join(format!("{}.fit.{}", t.spec.name, d.extension()));
+                        if !p.is_file() {
+                            bad(p, "missing".into());
+                        }
+                    }
+                }
+            }
         }
     }
     if a.json {

@@ -40,12 +40,6 @@ pub struct FitArgs {
     pub guards: super::guards::Guards,
 }
 
-/// Search CPU seconds per validation point (measured: 66k points, 2 threads, 80 s wall).
-const SECONDS_PER_POINT: f64 = 2.5e-3;
-/// Peak bytes per validation point (the exchange's rows: up to 66 unknowns of 8 bytes, the
-/// coarse copy, variables and values).
-const BYTES_PER_POINT: u64 = 1200;
-
 pub fn run(a: FitArgs) -> Result<(), CliError> {
     for l in &a.emit {
         if function::dialect(l).is_none() {
@@ -78,23 +72,20 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
     let mut grid = t.clone();
     grid.spec.axes = axes;
     let mut time = crate::resources::estimate_table_time(&grid);
-    time.cpu_seconds += points as f64 * SECONDS_PER_POINT;
+    time.cpu_seconds += points as f64 * crate::fit::emit::SECONDS_PER_POINT;
     let deadline = a.guards.admit(&super::guards::Work {
         what: "this fit",
-        memory: points as u64 * BYTES_PER_POINT,
+        memory: points as u64 * crate::fit::emit::BYTES_PER_POINT,
         memory_detail: format!("{points} validation points"),
         time,
         threads: rayon::current_num_threads(),
         smaller: "fit a table of fewer texels",
     })?;
-    let tg = target::build(&t.spec, Some(&deadline)).map_err(CliError::input)?;
-    let corner = t.spec.model.ndf.is_some();
-    let front = search::search(&tg, weight, corner, &search::Limits::default(), &|| {
-        deadline.passed()
-    });
-    if deadline.passed() {
+    let Some((tg, front)) =
+        crate::fit::emit::front(&t.spec, weight, Some(&deadline)).map_err(CliError::input)?
+    else {
         return Err(super::guards::stopped("this fit", &deadline));
-    }
+    };
     let refs: Vec<(reference::Reference, reference::Measured)> = reference::all()
         .into_iter()
         .filter(|r| reference::preset_of(r.name) == Some(preset.name.as_str()))
@@ -106,16 +97,12 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
     let chosen = a
         .max_error
         .map(|e| {
-            front.iter().find(|c| c.max_total() <= e).ok_or_else(|| {
-                CliError::env(format!(
-                    "no fit of {}/{} reaches --max-error {} (the best: {} with {} operations); ask for more error or bake a texture",
-                    preset.name,
-                    t.spec.name,
-                    num(e),
-                    num(front.last().map_or(f64::NAN, |c| c.max_total())),
-                    front.last().map_or(0, |c| c.counts.ops)
-                ))
-            })
+            crate::fit::emit::choose(
+                &front,
+                crate::fit::emit::Goal::MaxError(e),
+                &format!("{}/{}", preset.name, t.spec.name),
+            )
+            .map_err(CliError::env)
         })
         .transpose()?;
     let rows: Vec<serde_json::Value> = front
@@ -206,58 +193,17 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
     }
     if let Some(c) = chosen {
         let base = format!("{}-{}-fit", preset.name, t.spec.name);
-        let fname = base.replace('-', "_");
-        let program = c.fitted.program(&tg.inputs, &tg.channels);
-        let comment = vec![
-            format!(
-                "brdfbake fit {} --table {}: {}",
-                preset.name, t.spec.name, c.description
-            ),
-            format!(
-                "inputs ({}), outputs ({})",
-                program.inputs.join(", "),
-                tg.channels.join(", ")
-            ),
-            format!(
-                "max {} error per channel {:?} (f64 evaluation), f32 rounding bound {:?}",
-                weight.name(),
-                c.error.iter().map(|e| num(*e)).collect::<Vec<_>>(),
-                c.f32_bound.iter().map(|e| num(*e)).collect::<Vec<_>>()
-            ),
-            format!(
-                "{} operations ({} div/sqrt/exp2), {} constants",
-                c.counts.ops, c.counts.special, c.counts.constants
-            ),
-        ];
-        let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-        for l in &a.emit {
-            let d = function::dialect(l).expect("checked above");
-            let text = function::encode(&*d, &fname, &program, &comment);
-            files.push((
-                a.out.join(format!("{base}.{}", d.extension())),
-                text.into_bytes(),
-            ));
-        }
-        let sidecar = json!({
-            "schema": "brdfbake.fit/1",
-            "preset": preset.name,
-            "table": t.spec.name,
-            "function": fname,
-            "inputs": tg.inputs.iter().map(|i| json!({"name": i.name, "domain": i.domain})).collect::<Vec<_>>(),
-            "channels": tg.channels,
-            "weight": weight.name(),
-            "form": c.description,
-            "max_error": c.error,
-            "f32_bound": c.f32_bound,
-            "ops": c.counts,
-            "fit": c.fitted,
-        });
-        files.push((
-            a.out.join(format!("{base}.json")),
-            serde_json::to_string_pretty(&sidecar)
-                .expect("serializable")
-                .into_bytes(),
-        ));
+        let files = crate::fit::emit::files(
+            &preset.name,
+            &t.spec.name,
+            &tg,
+            weight,
+            c,
+            &a.emit,
+            &a.out,
+            &base,
+            Default::default(),
+        );
         std::fs::create_dir_all(&a.out)
             .map_err(|e| CliError::env(format!("creating {}: {e}", a.out.display())))?;
         crate::write::write_all_atomic(&files)
@@ -267,6 +213,36 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// The table a bake's fit sidecar belongs to: from the table's sidecar `TABLE.json` in the
+/// same folder, which must carry the same input hash.
+fn table_beside(
+    path: &std::path::Path,
+    table: &str,
+    hash: &str,
+) -> Result<crate::preset::PresetTable, CliError> {
+    let side = path.with_file_name(format!("{table}.json"));
+    let bytes = crate::readback::read_bytes(&side).map_err(|e| match e {
+        crate::readback::ReadError::Input(m) => CliError::input(format!(
+            "{}: the fit of a bake is checked against its table's sidecar: {m}",
+            path.display()
+        )),
+        crate::readback::ReadError::Io(m) => CliError::env(m),
+    })?;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes)
+        .map_err(|e| CliError::input(format!("{}: not valid JSON ({e})", side.display())))?;
+    let t = crate::readback::table_from_sidecar(&doc)
+        .map_err(|m| CliError::input(format!("{}: {m}", side.display())))?;
+    let have = crate::meta::input_hash(&t);
+    if have != hash {
+        return Err(CliError::input(format!(
+            "{}: its input hash {hash} is not its table's ({} has {have}): they come from different bakes",
+            path.display(),
+            side.display()
+        )));
+    }
+    Ok(t)
 }
 
 /// Points `verify` re-evaluates a fit at, and their stream's seed.
@@ -304,8 +280,20 @@ pub fn verify_sidecar(
             .ok_or_else(|| bad(&format!("\"{key}\" (a number per channel)")))
     };
     let (max_error, f32_bound) = (stated("max_error")?, stated("f32_bound")?);
-    let presets = super::bake::resolve(&[preset_name.to_string()])?;
-    let t = super::compare::pick_table(&presets[0], Some(table_name))?;
+    let owned;
+    let t = match doc["input_hash"].as_str() {
+        // a bake's fit (the preset field `fit`): its table is the one the sidecar beside it
+        // describes, whatever preset file it came from
+        Some(hash) => {
+            owned = table_beside(path, table_name, hash)?;
+            &owned
+        }
+        None => {
+            let presets = super::bake::resolve(&[preset_name.to_string()])?;
+            owned = super::compare::pick_table(&presets[0], Some(table_name))?.clone();
+            &owned
+        }
+    };
     let inputs = target::inputs(&t.spec);
     let channels: Vec<String> = doc["channels"]
         .as_array()
@@ -319,10 +307,10 @@ pub fn verify_sidecar(
         return Err(bad("as many channels as max_error and f32_bound entries"));
     }
     let mut time = crate::resources::estimate_table_time(t);
-    time.cpu_seconds += VERIFY_POINTS as f64 * SECONDS_PER_POINT;
+    time.cpu_seconds += VERIFY_POINTS as f64 * crate::fit::emit::SECONDS_PER_POINT;
     let deadline = guards.admit(&super::guards::Work {
         what: "this verify",
-        memory: VERIFY_POINTS as u64 * BYTES_PER_POINT,
+        memory: VERIFY_POINTS as u64 * crate::fit::emit::BYTES_PER_POINT,
         memory_detail: format!("{VERIFY_POINTS} points"),
         time,
         threads: 1,

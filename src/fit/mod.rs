@@ -8,6 +8,7 @@
 //! including the corner pair of grazing smooth microfacet integrals; [`search`]: forms and
 //! their Pareto front); how to fit is `crate::approx`'s, which knows nothing of BRDFs.
 
+pub mod emit;
 pub mod figures;
 pub mod form;
 pub mod reference;
