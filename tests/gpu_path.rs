@@ -1806,7 +1806,8 @@ fn ltc_area_lights_evaluate_as_the_library_on_a_software_gpu() {
 }
 
 /// Fitted functions (`brdfbake fit`) on the software GPU: fits of the split sum (the search's
-/// best global polynomial in 2^(kμ), and one in the corner pair √(μ/(μ + α)), √(μ + α)), emitted as WGSL and evaluated in a WebGPU compute shader at
+/// best global polynomial in 2^(kμ), and one in the corner pair √(μ/(μ + α)), √(μ + α)), emitted as WGSL and evaluated in a WebGPU compute shader, and as
+/// GLSL ES 3.00 in a WebGL2 fragment shader (an RGBA32F target, a point per pixel), at
 /// points the fit never saw, against the exact integral. The bound per channel: the fit's
 /// stated max error (on the validation grid; 5% more between its points, as
 /// tests/fit_functions.rs argues) plus its f32 bound scaled for the GPU's arithmetic — the
@@ -1908,12 +1909,15 @@ fn fitted_functions_evaluate_within_their_stated_error_on_a_software_gpu() {
         }
         let p = fitted.program(&t.inputs, &t.channels);
         let wgsl = function::encode(&function::Wgsl, "fit", &p, &["test".into()]);
+        let glsl = function::encode(&function::Glsl, "fit", &p, &["test".into()]);
         let n = p.outputs.len();
-        let widen = match n {
-            1 => "vec4<f32>(y, 0.0, 0.0, 0.0)".to_string(),
-            2 => "vec4<f32>(y, 0.0, 0.0)".to_string(),
+        let (widen, widen_glsl) = match n {
+            1 => ("vec4<f32>(y, 0.0, 0.0, 0.0)", "vec4(y, 0.0, 0.0, 0.0)"),
+            2 => ("vec4<f32>(y, 0.0, 0.0)", "vec4(y, 0.0, 0.0)"),
             _ => panic!("{n} outputs"),
         };
+        // (the f32 bound times 46, argued above; the GLSL ES 3.00 spec states the same
+        // precisions for highp as WGSL: exp2 3 + 2|x| ULP, division 2.5 ULP)
         let allowed: Vec<f64> = (0..n)
             .map(|k| 1.05 * c.error[k] + 46.0 * c.f32_bound[k] + 1e-9)
             .collect();
@@ -1921,7 +1925,24 @@ fn fitted_functions_evaluate_within_their_stated_error_on_a_software_gpu() {
             json!({"id": list.len(), "name": "fit", "wgsl": wgsl, "widen": widen,
                "points": flat}),
         );
-        expect.push((name, n, allowed, broken, p));
+        expect.push((
+            format!("{name} (WGSL, WebGPU)"),
+            n,
+            allowed.clone(),
+            broken,
+            p.clone(),
+        ));
+        list.push(
+            json!({"id": list.len(), "name": "fit", "glsl": glsl, "widen_glsl": widen_glsl,
+               "points": flat}),
+        );
+        expect.push((
+            format!("{name} (GLSL ES 3.00, WebGL2)"),
+            n,
+            allowed,
+            broken,
+            p,
+        ));
     }
     let gpu_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gpu");
     let index = std::fs::read_to_string(gpu_dir.join("index.html"))

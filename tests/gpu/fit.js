@@ -1,6 +1,7 @@
-// The fitted-function case of tests/gpu_path.rs: each emitted WGSL function (brdfbake fit)
-// evaluated in a WebGPU compute shader at the points the test serves at /cases.json
-// (pairs of inputs), one vec4 per point back (the outputs, zero-padded).
+// The fitted-function case of tests/gpu_path.rs: each emitted function (brdfbake fit)
+// evaluated at the points the test serves at /cases.json (pairs of inputs), one vec4 per
+// point back (the outputs, zero-padded): WGSL in a WebGPU compute shader, GLSL ES 3.00 in a
+// WebGL2 fragment shader writing an RGBA32F target (one point per pixel).
 const log = document.getElementById('log');
 
 async function post(path, body, type) {
@@ -55,13 +56,91 @@ async function run(device, c) {
     return out;
 }
 
+// GLSL: one GL_POINTS vertex per point, at pixel (i mod W, i div W); the inputs reach the
+// fragment shader unchanged (flat) and the function runs there, highp (f32).
+function runGlsl(c) {
+    const n = c.points.length / 2;
+    const W = 64;
+    const H = Math.ceil(n / W);
+    const canvas = document.createElement('canvas');
+    canvas.width = W;
+    canvas.height = H;
+    const gl = canvas.getContext('webgl2', { antialias: false });
+    if (!gl) throw new Error('no WebGL2 context');
+    if (!gl.getExtension('EXT_color_buffer_float')) throw new Error('no EXT_color_buffer_float');
+    const vs = `#version 300 es
+precision highp float;
+in vec2 point;
+flat out vec2 p;
+void main() {
+    float i = float(gl_VertexID);
+    float x = mod(i, ${W}.0);
+    float y = floor(i / ${W}.0);
+    p = point;
+    gl_Position = vec4((x + 0.5) / ${W}.0 * 2.0 - 1.0, (y + 0.5) / ${H}.0 * 2.0 - 1.0, 0.0, 1.0);
+    gl_PointSize = 1.0;
+}
+`;
+    const fs = `#version 300 es
+precision highp float;
+${c.glsl}
+flat in vec2 p;
+out vec4 color;
+void main() {
+    color = ${c.widen_glsl.replace('y', `${c.name}(p.x, p.y)`)};
+}
+`;
+    const compile = (type, src) => {
+        const sh = gl.createShader(type);
+        gl.shaderSource(sh, src);
+        gl.compileShader(sh);
+        if (!gl.getShaderParameter(sh, gl.COMPILE_STATUS)) throw new Error('GLSL does not compile: ' + gl.getShaderInfoLog(sh));
+        return sh;
+    };
+    const prog = gl.createProgram();
+    gl.attachShader(prog, compile(gl.VERTEX_SHADER, vs));
+    gl.attachShader(prog, compile(gl.FRAGMENT_SHADER, fs));
+    gl.linkProgram(prog);
+    if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error('GLSL does not link: ' + gl.getProgramInfoLog(prog));
+    const tex = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, tex);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, W, H);
+    const fb = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, tex, 0);
+    if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) throw new Error('RGBA32F target incomplete');
+    const buf = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+    gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(c.points), gl.STATIC_DRAW);
+    const loc = gl.getAttribLocation(prog, 'point');
+    gl.enableVertexAttribArray(loc);
+    gl.vertexAttribPointer(loc, 2, gl.FLOAT, false, 0, 0);
+    gl.viewport(0, 0, W, H);
+    gl.useProgram(prog);
+    gl.disable(gl.BLEND);
+    gl.drawArrays(gl.POINTS, 0, n);
+    const out = new Float32Array(W * H * 4);
+    gl.readPixels(0, 0, W, H, gl.RGBA, gl.FLOAT, out);
+    const err = gl.getError();
+    if (err !== gl.NO_ERROR) throw new Error('WebGL error ' + err);
+    return out.slice(0, n * 4);
+}
+
 async function main() {
     const cases = await (await fetch('/cases.json')).json();
     const adapter = navigator.gpu && await navigator.gpu.requestAdapter();
     const info = { adapter: adapter ? (adapter.info && (adapter.info.architecture || adapter.info.vendor)) || 'unknown' : null };
+    for (const c of cases.filter((c) => c.glsl)) {
+        try {
+            await post(`/result/${c.id}`, runGlsl(c).buffer, 'application/octet-stream');
+        } catch (e) {
+            await post(`/error/${c.id}`, String(e && e.stack || e), 'text/plain');
+        }
+    }
+    const wgsl = cases.filter((c) => c.wgsl);
     if (adapter) {
         const device = await adapter.requestDevice();
-        for (const c of cases) {
+        for (const c of wgsl) {
             try {
                 await post(`/result/${c.id}`, (await run(device, c)).buffer, 'application/octet-stream');
             } catch (e) {
@@ -69,7 +148,7 @@ async function main() {
             }
         }
     } else {
-        for (const c of cases) await post(`/error/${c.id}`, 'no WebGPU adapter', 'text/plain');
+        for (const c of wgsl) await post(`/error/${c.id}`, 'no WebGPU adapter', 'text/plain');
     }
     log.textContent = 'done';
     await post('/done', JSON.stringify(info), 'application/json');
