@@ -533,6 +533,16 @@ pub fn metadata_with_fit(
             "supercompressionScheme 2 (Zstandard): the level is one zstd frame; a loader inflates it to the texels before upload (libktx: ktxTexture2_CreateFromMemory; three.js: KTX2Loader; Bevy: the zstd feature)"
         );
     }
+    if table.formats.contains(&crate::preset::Format::PngRgbd) {
+        v["storage"]["rgbd"] = json!({
+            "file": format!("{}.png", spec.name),
+            "encoding": "Babylon.js RGBD, 8-bit RGBA PNG: R, G, B = round(255 (v D)^(1/2.2)), A = round(255 D), D = min(floor(max(255/max(R, G, B), 1))/255, 1)",
+            "decode": "value = (c/255)^2.2 / (a/255) (Babylon's fromRGBD with its default toLinearSpace = pow 2.2); decoded once to a half-float texture by RGBDTextureTools.ExpandRGBDTexture",
+            "max_rounding": crate::encode::rgbd::max_rounding(lut),
+            "max_rounding_meaning": "per channel, the most a decoded texel differs from the table's value through the encoding (half a code through the power curve, over D); the table's own values are in its other files",
+            "layout": "as png-data: the top image row is y = 0 (load with invertY = false); no colour-space chunk",
+        });
+    }
     if table.formats.contains(&crate::preset::Format::Dds) {
         let (code, name) = crate::encode::dds::dxgi_format(components, spec.storage);
         let volume = dims.len() == 3 && table.layout_3d == crate::preset::Layout3d::Volume;

@@ -95,6 +95,7 @@ pub fn encode(
             storage,
             table_name: name,
         }),
+        Format::PngRgbd => one(&crate::encode::rgbd::PngRgbd { table_name: name }),
         Format::H => one(&CHeader {
             table_name: name,
             storage,

@@ -41,6 +41,9 @@ pub enum Format {
     /// The texels of a unorm8/unorm16 table as an 8- or 16-bit PNG (`TABLE.png`): data to
     /// upload, not a preview ([`crate::encode::png_data`]).
     PngData,
+    /// A three-channel f32/f16 table as Babylon.js' RGBD-encoded 8-bit RGBA PNG
+    /// (`TABLE.png`, [`crate::encode::rgbd`]): value = (c/255)^2.2 / (a/255).
+    PngRgbd,
     /// C/C++ header with the texels as a `float` (or half-bit `uint16_t`) array.
     H,
     /// Rust source with the texels as a `static` array.
@@ -61,13 +64,14 @@ pub enum Format {
 }
 
 impl Format {
-    pub const ALL: [Format; 14] = [
+    pub const ALL: [Format; 15] = [
         Format::Exr,
         Format::Ktx2,
         Format::Ktx2Zstd,
         Format::Dds,
         Format::Png,
         Format::PngData,
+        Format::PngRgbd,
         Format::H,
         Format::Rs,
         Format::Glsl,
@@ -86,6 +90,7 @@ impl Format {
             Format::Dds => "dds",
             Format::Png => "png",
             Format::PngData => "png-data",
+            Format::PngRgbd => "png-rgbd",
             Format::H => "h",
             Format::Rs => "rs",
             Format::Glsl => "glsl",
@@ -130,6 +135,11 @@ impl Format {
                 "\"ktx2\" and \"ktx2-zstd\" both write TABLE.ktx2: list one of them (ktx2-zstd is the same texture with its level supercompressed by Zstandard)".into(),
             );
         }
+        if formats.contains(&Format::PngData) && formats.contains(&Format::PngRgbd) {
+            return Err(
+                "\"png-data\" and \"png-rgbd\" both write TABLE.png: list one of them (png-data holds UNORM codes, png-rgbd Babylon.js' RGBD encoding of f32/f16 values)".into(),
+            );
+        }
         Ok(())
     }
 
@@ -153,6 +163,11 @@ pub fn format_refusal(storage: Storage, format: Format) -> Option<String> {
             "png-data holds normalized integers (an 8- or 16-bit PNG of the texels): it needs \
              \"storage\": \"unorm8\" or \"unorm16\"; a {} table is written as exr, ktx2, h or rs \
              (\"png\" gives previews for people)",
+            storage.name()
+        )),
+        (Format::PngRgbd, true) => Some(format!(
+            "png-rgbd encodes the table's values (Babylon.js' RGBD, 8 bits with a shared \
+             divisor): it needs \"storage\": \"f32\" or \"f16\", not {}",
             storage.name()
         )),
         _ => None,
@@ -367,6 +382,13 @@ impl PresetTable {
             if let Some(why) = format_refusal(self.spec.storage, *f) {
                 return Err(format!("table `{}`: {why}", self.spec.name));
             }
+        }
+        let nc = self.stored_channels().len();
+        if formats.contains(&Format::PngRgbd) && nc != 3 {
+            return Err(format!(
+                "table `{}`: png-rgbd stores three channels (R, G, B; the shared divisor D goes in alpha), the table stores {nc}",
+                self.spec.name
+            ));
         }
         Ok(())
     }

@@ -47,6 +47,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
 /// `brdfbake bake` leaves them out.
 pub const ENGINES: &[(&str, &str)] = &[
     (
+        "babylon-env-brdf",
+        include_str!("../presets/engines/babylon-env-brdf.json"),
+    ),
+    (
         "bsdl-ggx-energy",
         include_str!("../presets/engines/bsdl-ggx-energy.json"),
     ),

@@ -1239,6 +1239,14 @@ fn read_png_data(
             path.display()
         )));
     }
+    if fact("note") == Some(crate::encode::rgbd::NOTE) {
+        return Err(ReadError::Input(format!(
+            "{}: a png-rgbd image (Babylon.js' RGBD encoding: 8-bit codes with a shared divisor, \
+             its rounding in the sidecar's storage.rgbd), not texels this command reads: read the \
+             table's .exr, .ktx2 or .npy (bake it with --format exr,png-rgbd)",
+            path.display()
+        )));
+    }
     if fact("note") != Some(crate::encode::png_data::NOTE) {
         return Err(not_ours(format!(
             "no {ATTRIBUTE_PREFIX}note = {:?} text chunk",

@@ -74,6 +74,8 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
             Format::Png => 2 * (channels * 2 + 6),
             // the codes (u16), the image rows (at most 4 components) raw and compressed
             Format::PngData => channels * 2 + 2 * 4 * stored,
+            // the RGBA codes, raw and compressed
+            Format::PngRgbd => 2 * 4,
             Format::H | Format::Rs => channels * TEXT_BYTES_PER_VALUE,
             // a lookup function: no texels
             Format::Glsl | Format::Hlsl | Format::Wgsl => 0,

@@ -59,7 +59,7 @@ fn expected_keys(t: &crate::preset::PresetTable, formats: &[Format]) -> Vec<Stri
                 keys.push(format!("preview-{}.png", c.name));
             }
             keys.push(format!("preview-{}-colour.png", ch[0].name));
-        } else if *f == Format::PngData {
+        } else if *f == Format::PngData || *f == Format::PngRgbd {
             // (png-data is TABLE.png; the previews are TABLE.preview-*.png)
             keys.push("png".to_string());
         } else if f.is_ktx2() {

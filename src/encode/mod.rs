@@ -11,6 +11,7 @@ pub mod npy;
 pub mod npz;
 pub mod png;
 pub mod png_data;
+pub mod rgbd;
 pub mod shader;
 pub mod shader_ltc;
 pub mod source;

@@ -138,6 +138,9 @@ pub enum Interleave {
 pub enum Decode {
     Linear,
     Srgb,
+    /// Babylon.js' RGBD ([`crate::encode::rgbd`]): an 8-bit RGBA PNG whose channels R, G, B
+    /// decode as `(c/255)^2.2 / (a/255)`; the file's fourth channel (D) is listed as `-`.
+    Rgbd,
 }
 
 /// A shipped table read into the stored layout: `values[(texel)·nc + c]` for the file's
@@ -182,6 +185,15 @@ impl Shipped {
                 let written = self.spelled.get(k).unwrap_or(c);
                 return Err(format!("channels[{k}]: {written:?} is listed twice"));
             }
+        }
+        if self.decode == Some(Decode::Rgbd)
+            && (self.format != ShippedFormat::Png
+                || self.channels.len() != 4
+                || self.channels[3] != "-")
+        {
+            return Err(
+                "decode rgbd reads an RGBA PNG whose alpha is the divisor D: give \"format\": \"png\" and four channels, the last \"-\" (e.g. [\"R\", \"G\", \"B\", \"-\"])".into(),
+            );
         }
         if self.channels.iter().all(|c| c == "-") {
             return Err("channels: at least one channel must be compared (all are \"-\")".into());
@@ -321,7 +333,27 @@ impl Shipped {
                         i + self.offset
                     ));
                 }
-                let (value, r) = self.decoded(v, kinds[c]);
+                let (value, r) = if self.decode == Some(Decode::Rgbd) {
+                    // (validated: an 8-bit RGBA PNG, D the fourth channel)
+                    let code = |k: usize| {
+                        let i = match self.interleave.unwrap_or(Interleave::Texel) {
+                            Interleave::Texel => ft * nc + k,
+                            Interleave::Plane => k * texels + ft,
+                        };
+                        (raw[i] * 255.0).round().clamp(0.0, 255.0) as u8
+                    };
+                    let px = [code(0), code(1), code(2), code(3)];
+                    let rgb = crate::encode::rgbd::decode_texel(px).ok_or_else(|| {
+                        format!("{name}: texel [{x}, {y}, {z}] has D = 0: not an RGBD texel")
+                    })?;
+                    if c < 3 {
+                        (rgb[c], crate::encode::rgbd::rounding(px[c], px[3]))
+                    } else {
+                        (0.0, 0.0) // D itself: listed as "-", not compared
+                    }
+                } else {
+                    self.decoded(v, kinds[c])
+                };
                 values[t * nc + c] = value;
                 rounding[t * nc + c] = r;
             }
@@ -331,7 +363,11 @@ impl Shipped {
             values,
             step: kinds.iter().map(|k| k.step()).fold(0.0, f64::max),
             rounding,
-            storage: storage_text(&kinds, self.decode == Some(Decode::Srgb)),
+            storage: if self.decode == Some(Decode::Rgbd) {
+                "8-bit RGBD".into()
+            } else {
+                storage_text(&kinds, self.decode == Some(Decode::Srgb))
+            },
             present: None,
         })
     }
@@ -340,7 +376,8 @@ impl Shipped {
     /// storage `kind`.
     fn decoded(&self, v: f64, kind: NumberKind) -> (f64, f64) {
         match self.decode.unwrap_or(Decode::Linear) {
-            Decode::Linear => (v, kind.rounding(v)),
+            // (RGBD decodes a whole texel, in read)
+            Decode::Linear | Decode::Rgbd => (v, kind.rounding(v)),
             Decode::Srgb => {
                 // half a step of the stored number either way, through the transfer function
                 let h = kind.rounding(v);
