@@ -51,6 +51,10 @@ pub const ENGINES: &[(&str, &str)] = &[
         include_str!("../presets/engines/babylon-env-brdf.json"),
     ),
     (
+        "bevy-dfg",
+        include_str!("../presets/engines/bevy-dfg.json"),
+    ),
+    (
         "bsdl-ggx-energy",
         include_str!("../presets/engines/bsdl-ggx-energy.json"),
     ),

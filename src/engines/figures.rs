@@ -92,16 +92,6 @@ fn fault_words(f: &Fault, axes: &[crate::lut::Axis]) -> String {
     }
 }
 
-/// Texel `idx` by its physical coordinates in a few words: `n·v = 1e-4, r = 0.35`.
-fn short_texel(axes: &[crate::lut::Axis], idx: &[usize; 3]) -> String {
-    let idx = &idx[..axes.len()];
-    axes.iter()
-        .zip(crate::lut::texel_coordinates(axes, idx))
-        .map(|(a, x)| a.physical_short(x))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// The header of the README's engine table.
 pub const README_HEADER: &str = "| preset | engine's table | the shipped table's largest error per channel (its verdict) |\n|---|---|---|";
 
@@ -118,11 +108,11 @@ pub fn readme_row(c: &Comparison) -> String {
         .iter()
         .map(|ch| {
             let s = ch.shipped_regular.as_ref().unwrap_or(&ch.shipped);
+            // (where it lies: docs/engines.md's table of verdicts)
             format!(
-                "{} {} at {} ({})",
+                "{} {} ({})",
                 ch.name,
                 fig(s.max_abs),
-                short_texel(&c.errors.axes, &s.worst_texel),
                 grade_words(ch, &c.errors.axes)
             )
         })

@@ -105,6 +105,10 @@ pub enum ShippedFormat {
     Png,
     /// An OpenEXR file of half or float channels, read in the channel order the file lists.
     Exr,
+    /// A KTX 2.0 texture of one level, R/RG/RGBA in 16- or 32-bit float or 8- or 16-bit
+    /// UNORM, plain or Zstandard-supercompressed (Bevy's `dfg.ktx2`), any writer; a 2D
+    /// array's layers or a volume's slices stacked as rows.
+    Ktx2,
     /// Raw little-endian 32-bit floats and nothing else (nvdiffrec's `bsdf_256_256.bin`):
     /// exactly the table's values (after `offset` skipped ones), no more.
     Bin,
@@ -265,11 +269,11 @@ impl Shipped {
                     text_array_with_decimals(text, self.symbol.as_deref(), values, name)?;
                 (raw, vec![values.number_kind(decimals); nc])
             }
-            ShippedFormat::Png | ShippedFormat::Exr => {
-                let (raw, kinds, size) = if self.format == ShippedFormat::Png {
-                    png_values(bytes, nc, name)?
-                } else {
-                    exr_values(bytes, nc, name)?
+            ShippedFormat::Png | ShippedFormat::Exr | ShippedFormat::Ktx2 => {
+                let (raw, kinds, size) = match self.format {
+                    ShippedFormat::Png => png_values(bytes, nc, name)?,
+                    ShippedFormat::Exr => exr_values(bytes, nc, name)?,
+                    _ => ktx2_values(bytes, nc, name)?,
                 };
                 image = Some(size);
                 (raw, kinds)
@@ -553,6 +557,7 @@ impl Shipped {
             }
             ShippedFormat::Png => format!("a {}-channel PNG", self.channels.len()),
             ShippedFormat::Exr => format!("an OpenEXR file of {} channels", self.channels.len()),
+            ShippedFormat::Ktx2 => format!("a KTX2 texture of {} components", self.channels.len()),
             ShippedFormat::Bin => format!(
                 "a raw little-endian float32 file of {} channels",
                 self.channels.len()
@@ -977,6 +982,90 @@ fn png_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String
         vec![NumberKind::Unorm(max); nc],
         [w as usize, h as usize],
     ))
+}
+
+/// The largest level a shipped KTX2 file may inflate to (a 1024³ RGBA f32 table is 16 GiB;
+/// engines ship tables of a few MiB).
+const MAX_KTX2_BYTES: u64 = 1 << 30;
+
+/// The texels of a KTX2 file's only level, components in order, rows from its first (a 2D
+/// array's layers and a volume's slices stacked as rows, layer/slice 0 first).
+fn ktx2_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, String> {
+    let r = std::panic::catch_unwind(|| ktx2::Reader::new(bytes))
+        .map_err(|_| format!("{name}: malformed KTX2 (the parser failed on it)"))?
+        .map_err(|e| format!("{name}: not a KTX2 file brdfbake can read: {e}"))?;
+    let hd = r.header();
+    use ktx2::Format as F;
+    let (kind, bytes_per, components) = match hd.format {
+        Some(F::R16_SFLOAT) => (NumberKind::Half, 2, 1),
+        Some(F::R16G16_SFLOAT) => (NumberKind::Half, 2, 2),
+        Some(F::R16G16B16A16_SFLOAT) => (NumberKind::Half, 2, 4),
+        Some(F::R32_SFLOAT) => (NumberKind::F32, 4, 1),
+        Some(F::R32G32_SFLOAT) => (NumberKind::F32, 4, 2),
+        Some(F::R32G32B32A32_SFLOAT) => (NumberKind::F32, 4, 4),
+        Some(F::R8_UNORM) => (NumberKind::Unorm(255.0), 1, 1),
+        Some(F::R8G8_UNORM) => (NumberKind::Unorm(255.0), 1, 2),
+        Some(F::R8G8B8A8_UNORM) => (NumberKind::Unorm(255.0), 1, 4),
+        Some(F::R16_UNORM) => (NumberKind::Unorm(65535.0), 2, 1),
+        Some(F::R16G16_UNORM) => (NumberKind::Unorm(65535.0), 2, 2),
+        Some(F::R16G16B16A16_UNORM) => (NumberKind::Unorm(65535.0), 2, 4),
+        f => {
+            return Err(format!(
+                "{name}: vkFormat {f:?}; a shipped KTX2 table is R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM"
+            ))
+        }
+    };
+    if components != nc {
+        return Err(format!(
+            "{name}: the KTX2 texels have {components} components, the preset's shipped.channels lists {nc}"
+        ));
+    }
+    if hd.level_count > 1 {
+        return Err(format!(
+            "{name}: {} mip levels; a shipped table has one",
+            hd.level_count
+        ));
+    }
+    let level = r
+        .levels()
+        .next()
+        .ok_or_else(|| format!("{name}: no level"))?;
+    let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
+    let d = hd.pixel_depth.max(1) as u64 * hd.layer_count.max(1) as u64 * hd.face_count.max(1) as u64;
+    let need = w as u64 * h as u64 * d * (components * bytes_per) as u64;
+    if need > MAX_KTX2_BYTES {
+        return Err(format!("{name}: {need} bytes of texels, more than a shipped table can be"));
+    }
+    let data: std::borrow::Cow<[u8]> = match hd.supercompression_scheme {
+        None => level.data.into(),
+        Some(ktx2::SupercompressionScheme::Zstandard) => {
+            crate::encode::zstd::decompress(level.data, level.uncompressed_byte_length as usize)
+                .map_err(|e| format!("{name}: its level: {e}"))?
+                .into()
+        }
+        Some(s) => {
+            return Err(format!(
+                "{name}: supercompressionScheme {s:?}; a shipped table is plain or Zstandard"
+            ))
+        }
+    };
+    if data.len() as u64 != need {
+        return Err(format!(
+            "{name}: the level holds {} bytes, its header's {w} × {h} × {d} texels need {need}",
+            data.len()
+        ));
+    }
+    let values = data
+        .chunks_exact(bytes_per)
+        .map(|b| match (kind, bytes_per) {
+            (NumberKind::Half, _) => half::f16::from_le_bytes([b[0], b[1]]).to_f64(),
+            (NumberKind::F32, _) => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+            (NumberKind::Unorm(max), 1) => b[0] as f64 / max,
+            (NumberKind::Unorm(max), _) => u16::from_le_bytes([b[0], b[1]]) as f64 / max,
+            _ => f64::NAN,
+        })
+        .collect();
+    Ok((values, vec![kind; nc], [w, h * d as usize]))
 }
 
 /// The values of a file of raw little-endian 32-bit floats.
