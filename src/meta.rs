@@ -166,10 +166,10 @@ pub fn input_hash(table: &PresetTable) -> String {
 
 /// A table's `fit` request as the preset spells it (`max_error` or `max_ops`, `weight`,
 /// `emit`).
-fn fit_request_json(f: &crate::fit::emit::Request) -> Value {
+fn fit_request_json(f: &crate::fit::request::Request) -> Value {
     let mut o = match f.goal {
-        crate::fit::emit::Goal::MaxError(e) => json!({ "max_error": e }),
-        crate::fit::emit::Goal::MaxOps(n) => json!({ "max_ops": n }),
+        crate::fit::request::Goal::MaxError(e) => json!({ "max_error": e }),
+        crate::fit::request::Goal::MaxOps(n) => json!({ "max_ops": n }),
     };
     o["weight"] = json!(f.weight.name());
     o["emit"] = json!(f.emit);

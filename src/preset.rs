@@ -274,7 +274,7 @@ pub struct PresetTable {
     /// A fit of the table's exact function to emit beside it (`fit`: `{"max_error": E}` or
     /// `{"max_ops": N}`, [`crate::fit::emit`]): `bake` writes `TABLE.fit.{glsl,…}` and the
     /// fit's sidecar `TABLE.fit.json`, and fails when no fit meets the request.
-    pub fit: Option<crate::fit::emit::Request>,
+    pub fit: Option<crate::fit::request::Request>,
 }
 
 /// One stored channel of a table whose preset sets `channels`: what texture component k
@@ -609,7 +609,7 @@ struct RawTable {
     #[serde(default)]
     ltc: Option<RawLtc>,
     #[serde(default)]
-    fit: Option<crate::fit::emit::RawRequest>,
+    fit: Option<crate::fit::request::RawRequest>,
 }
 
 /// The `ltc` object of an `ltc` table.
@@ -1042,7 +1042,7 @@ pub fn parse(text: &str, source_name: &str, name: &str) -> Result<Preset, Preset
         }
         if let Some(f) = &t.fit {
             let req = f.check().map_err(|m| field(at("fit"), m))?;
-            crate::fit::emit::points(&table.spec)
+            crate::fit::grid::points(&table.spec)
                 .map_err(|m| field(at("fit"), format!("this table cannot be fitted: {m}")))?;
             table.fit = Some(req);
         }

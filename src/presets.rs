@@ -50,10 +50,7 @@ pub const ENGINES: &[(&str, &str)] = &[
         "babylon-env-brdf",
         include_str!("../presets/engines/babylon-env-brdf.json"),
     ),
-    (
-        "bevy-dfg",
-        include_str!("../presets/engines/bevy-dfg.json"),
-    ),
+    ("bevy-dfg", include_str!("../presets/engines/bevy-dfg.json")),
     (
         "bsdl-ggx-energy",
         include_str!("../presets/engines/bsdl-ggx-energy.json"),

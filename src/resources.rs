@@ -88,8 +88,8 @@ pub fn estimate_table(t: &PresetTable, formats: &[Format]) -> Estimate {
     }
     // a fit's search (`fit`): its validation points' rows, while the table is kept
     let fit_scratch = t.fit.as_ref().map_or(0, |_| {
-        crate::fit::emit::points(&t.spec).map_or(0, |n| {
-            (n as u64).saturating_mul(crate::fit::emit::BYTES_PER_POINT)
+        crate::fit::grid::points(&t.spec).map_or(0, |n| {
+            (n as u64).saturating_mul(crate::fit::grid::BYTES_PER_POINT)
         })
     });
     Estimate {
@@ -357,9 +357,9 @@ pub fn estimate_table_time(t: &PresetTable) -> TimeEstimate {
     // a fit (`fit`): its exact values at the validation points are a table of those points,
     // and its search costs per point
     let fit_seconds = t.fit.as_ref().map_or(0.0, |_| {
-        crate::fit::emit::points(&t.spec).map_or(0.0, |n| {
+        crate::fit::grid::points(&t.spec).map_or(0.0, |n| {
             let per_point = per_texel * SECONDS_PER_EVALUATION;
-            n as f64 * (per_point + crate::fit::emit::SECONDS_PER_POINT)
+            n as f64 * (per_point + crate::fit::grid::SECONDS_PER_POINT)
         })
     });
     TimeEstimate {

@@ -114,7 +114,10 @@ fn bevys_shipped_table_is_this_layout() {
     let w = worst(8, &|i, j| (i, j));
     assert!(w[0] < 1.5e-3 && w[1] < 5e-4, "A, B worst {w:?}");
     let grazing = worst(0, &|i, j| (i, j));
-    assert!(grazing[0] > 3.0 * w[0], "A's grazing bias: {grazing:?} vs {w:?}");
+    assert!(
+        grazing[0] > 3.0 * w[0],
+        "A's grazing bias: {grazing:?} vs {w:?}"
+    );
     // negative controls: the axes swapped (roughness along u), or the table one texel off
     let swapped = worst(8, &|i, j| (j, i));
     assert!(swapped[0] > 0.1, "swapped axes fit: {swapped:?}");

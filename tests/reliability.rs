@@ -655,12 +655,24 @@ fn memory_estimate_bounds_the_files_and_texels() {
        "axes": {"n_dot_l": {"size": 8}, "n_dot_h": {"size": 8}, "n_dot_v": {"size": 8}}}
     ]}"#;
     // every format a float table takes (png-data holds normalized integers only; ktx2 and
-    // ktx2-zstd write the same file, so one of them in each set)
+    // ktx2-zstd write the same file, so one of them in each set; png-rgbd, three channels
+    // only, below)
     let all: Vec<Format> = Format::ALL
+        .into_iter()
+        .filter(|f| *f != Format::PngData && *f != Format::Ktx2 && *f != Format::PngRgbd)
+        .collect();
+    check_memory_estimate(text, &all);
+    // png-rgbd with every other format a three-channel float table takes
+    let rgbd = r#"{"schema": "brdfbake.preset/1", "tables": [
+      {"name": "dfg", "kind": "dfg", "layout": "filament", "cloth": true,
+       "model": {"ndf": "ggx", "masking": "smith-height-correlated"},
+       "axes": {"cos_theta_v": {"size": 16}, "roughness": {"size": 12, "quantity": "perceptual"}}}
+    ]}"#;
+    let three: Vec<Format> = Format::ALL
         .into_iter()
         .filter(|f| *f != Format::PngData && *f != Format::Ktx2)
         .collect();
-    check_memory_estimate(text, &all);
+    check_memory_estimate(rgbd, &three);
     // and every format a UNORM table takes (EXR has no normalized integers)
     let unorm = r#"{"schema": "brdfbake.preset/1", "tables": [
       {"name": "dfg", "kind": "dfg", "layout": "filament", "storage": "unorm8",
@@ -672,7 +684,7 @@ fn memory_estimate_bounds_the_files_and_texels() {
     ]}"#;
     let all: Vec<Format> = Format::ALL
         .into_iter()
-        .filter(|f| *f != Format::Exr && *f != Format::Ktx2Zstd)
+        .filter(|f| *f != Format::Exr && *f != Format::Ktx2Zstd && *f != Format::PngRgbd)
         .collect();
     check_memory_estimate(unorm, &all);
 }

@@ -1031,10 +1031,13 @@ fn ktx2_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, Strin
         .next()
         .ok_or_else(|| format!("{name}: no level"))?;
     let (w, h) = (hd.pixel_width as usize, hd.pixel_height.max(1) as usize);
-    let d = hd.pixel_depth.max(1) as u64 * hd.layer_count.max(1) as u64 * hd.face_count.max(1) as u64;
+    let d =
+        hd.pixel_depth.max(1) as u64 * hd.layer_count.max(1) as u64 * hd.face_count.max(1) as u64;
     let need = w as u64 * h as u64 * d * (components * bytes_per) as u64;
     if need > MAX_KTX2_BYTES {
-        return Err(format!("{name}: {need} bytes of texels, more than a shipped table can be"));
+        return Err(format!(
+            "{name}: {need} bytes of texels, more than a shipped table can be"
+        ));
     }
     let data: std::borrow::Cow<[u8]> = match hd.supercompression_scheme {
         None => level.data.into(),

@@ -2,6 +2,8 @@
 //! `brdfbake.fit/1` sidecar that `brdfbake verify` re-checks. Shared by `brdfbake fit
 //! --max-error` and the preset field `"fit"`, which `bake` writes beside the table.
 
+pub use super::grid::{points, BYTES_PER_POINT, SECONDS_PER_POINT};
+pub use super::request::{Goal, RawRequest, Request};
 use super::search::{self, Candidate, Weight};
 use super::target::{self, Target};
 use crate::encode::function;
@@ -9,84 +11,6 @@ use crate::numfmt::num;
 use crate::table::TableSpec;
 use serde_json::json;
 use std::path::{Path, PathBuf};
-
-/// Search CPU seconds per validation point (measured: 66k points, 2 threads, 80 s wall).
-pub const SECONDS_PER_POINT: f64 = 2.5e-3;
-/// Peak bytes per validation point (the exchange's rows: up to 66 unknowns of 8 bytes, the
-/// coarse copy, variables and values).
-pub const BYTES_PER_POINT: u64 = 1200;
-
-/// Which fit of the front to take.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Goal {
-    /// The cheapest whose max error plus f32 bound is at most this.
-    MaxError(f64),
-    /// The most accurate of at most this many operations.
-    MaxOps(usize),
-}
-
-/// A preset table's `"fit"`: `{"max_error": E}` or `{"max_ops": N}`, optionally `"weight"`
-/// (absolute, relative) and `"emit"` (languages; default all).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Request {
-    pub goal: Goal,
-    pub weight: Weight,
-    pub emit: Vec<String>,
-}
-
-/// The preset's JSON form of [`Request`].
-#[derive(serde::Deserialize, serde::Serialize, Clone, Debug)]
-#[serde(deny_unknown_fields)]
-pub struct RawRequest {
-    #[serde(default)]
-    pub max_error: Option<f64>,
-    #[serde(default)]
-    pub max_ops: Option<usize>,
-    #[serde(default)]
-    pub weight: Option<Weight>,
-    #[serde(default)]
-    pub emit: Option<Vec<String>>,
-}
-
-impl RawRequest {
-    /// The request, or what is wrong with it.
-    pub fn check(&self) -> Result<Request, String> {
-        let goal = match (self.max_error, self.max_ops) {
-            (Some(e), None) if e.is_finite() && e > 0.0 => Goal::MaxError(e),
-            (Some(e), None) => {
-                return Err(format!("max_error must be a positive number, got {}", num(e)))
-            }
-            (None, Some(n)) if n >= 1 => Goal::MaxOps(n),
-            (None, Some(_)) => return Err("max_ops must be at least 1".into()),
-            _ => {
-                return Err(
-                    "needs exactly one of max_error (the cheapest fit within it) or max_ops (the most accurate fit of at most that many operations)"
-                        .into(),
-                )
-            }
-        };
-        let emit = self
-            .emit
-            .clone()
-            .unwrap_or_else(|| function::LANGUAGES.iter().map(|s| s.to_string()).collect());
-        if emit.is_empty() {
-            return Err("emit lists no language".into());
-        }
-        for l in &emit {
-            if function::dialect(l).is_none() {
-                return Err(format!(
-                    "emit: unknown language {l:?} (accepted: {})",
-                    function::LANGUAGES.join(", ")
-                ));
-            }
-        }
-        Ok(Request {
-            goal,
-            weight: self.weight.unwrap_or(Weight::Absolute),
-            emit,
-        })
-    }
-}
 
 /// The fit of `front` (as [`search::search`] orders it: cheapest first, each more accurate
 /// than the one before) that `goal` asks for, or why none does.
@@ -108,13 +32,6 @@ pub fn choose<'a>(front: &'a [Candidate], goal: Goal, what: &str) -> Result<&'a 
             front.first().map_or(0, |c| c.counts.ops)
         ),
     })
-}
-
-/// The validation points a table's fit uses (the search's time and memory grow with them),
-/// or why the table cannot be fitted.
-pub fn points(spec: &TableSpec) -> Result<usize, String> {
-    let axes = target::grid_axes(spec)?;
-    Ok(axes.iter().map(|x| x.size).product::<usize>() + target::CHECK_POINTS)
 }
 
 /// The Pareto front of a table's fits, against its exact function (`None` when `stop` said

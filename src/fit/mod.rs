@@ -11,7 +11,9 @@
 pub mod emit;
 pub mod figures;
 pub mod form;
+pub mod grid;
 pub mod reference;
+pub mod request;
 pub mod resolution;
 pub mod search;
 pub mod target;

@@ -17,25 +17,7 @@ use crate::approx::polyfit;
 use crate::approx::program::OpCount;
 use rayon::prelude::*;
 
-/// A weight of the minimax error.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Weight {
-    /// |fit − exact|.
-    Absolute,
-    /// |fit − exact| / max(|exact|, 10⁻³·max|exact|): relative, floored where the channel
-    /// is near 0 (stated in the sidecar).
-    Relative,
-}
-
-impl Weight {
-    pub fn name(self) -> &'static str {
-        match self {
-            Weight::Absolute => "absolute",
-            Weight::Relative => "relative",
-        }
-    }
-}
+pub use super::request::Weight;
 
 /// The floor of the relative weight, as a fraction of the channel's largest |value|.
 pub const RELATIVE_FLOOR: f64 = 1e-3;

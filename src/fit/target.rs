@@ -12,14 +12,11 @@
 //! kinds that divide by n·v have no value, is evaluated at [`MIN_COSINE`] (the limit, to
 //! 1e-12).
 
-use crate::lut::{Axis, Convention, Quantity};
+pub use super::grid::{grid_axes, grid_points, CHECK_POINTS, MAX_POINTS, MIN_POINTS};
+use crate::lut::Quantity;
 use crate::table::spec::MIN_COSINE;
 use crate::table::{BakeOptions, TableSpec};
 
-/// Least points per axis of the validation set.
-pub const MIN_POINTS: usize = 129;
-/// Most points per axis (a 2D set of 513² is 263k points).
-pub const MAX_POINTS: usize = 513;
 /// The quadrature tolerance of the exact values: far below any error a fit states (the
 /// values are kept as f32, relative error 6e-8, which bounds what a fit can resolve).
 pub const TOLERANCE: f64 = 1e-8;
@@ -76,65 +73,6 @@ impl Target {
     pub fn shape(&self) -> Vec<usize> {
         self.coords.iter().map(|c| c.len()).collect()
     }
-}
-
-/// Grid points for an axis of `size` texels in `convention`.
-pub fn grid_points(size: usize, convention: Convention) -> usize {
-    if size <= 1 {
-        return 1;
-    }
-    let mut g = match convention {
-        Convention::Centers => 2 * size + 1,
-        Convention::Endpoints => 2 * size - 1,
-    };
-    while g < MIN_POINTS {
-        g = 2 * g - 1;
-    }
-    g
-}
-
-/// The validation grid's axes for `spec`: endpoint grids over each axis' parameter range
-/// (warp and clamp kept), a cosine end at 0 moved to [`MIN_COSINE`]. `Err` if a grid would
-/// exceed [`MAX_POINTS`] or the table is not one a fit takes.
-pub fn grid_axes(spec: &TableSpec) -> Result<Vec<Axis>, String> {
-    if spec.kind.is_ltc() {
-        return Err(format!(
-            "a {} table is an LTC fit itself, not an integral a polynomial approximates",
-            spec.kind.name()
-        ));
-    }
-    let mut axes = Vec::with_capacity(spec.axes.len());
-    for a in &spec.axes {
-        let g = grid_points(a.size, a.convention);
-        if g > MAX_POINTS {
-            return Err(format!(
-                "axis {} has {} texels: its validation grid would need {g} points (at most {MAX_POINTS}); \
-                 fit a table of at most {} texels per axis",
-                a.name,
-                a.size,
-                (MAX_POINTS - 1) / 2
-            ));
-        }
-        let mut b = a.clone();
-        b.size = g;
-        // endpoints over the whole parameter range: the range ends, and (by grid_points'
-        // count) every texel and every midpoint between two
-        b.convention = if g == 1 {
-            Convention::Centers
-        } else {
-            Convention::Endpoints
-        };
-        if a.quantity == Quantity::Cosine && g > 1 {
-            for end in 0..2 {
-                let x = b.warp.coordinate(b.range[end]);
-                if x < MIN_COSINE {
-                    b.range[end] = b.warp.parameter(MIN_COSINE);
-                }
-            }
-        }
-        axes.push(b);
-    }
-    Ok(axes)
 }
 
 /// Bakes the exact function on the validation set. `deadline`: `--max-time`.
@@ -205,9 +143,6 @@ pub fn inputs(spec: &TableSpec) -> Vec<Input> {
         .collect()
 }
 
-/// How many points off the grid the check set holds.
-pub const CHECK_POINTS: usize = 1024;
-
 /// The check set: [`CHECK_POINTS`] points drawn from a fixed splitmix64 stream, uniform over
 /// the domain, except that a quarter of them put a cosine axis in the grid's first four
 /// cells (grazing views, where the split sum and the albedos change fastest and a fit's
@@ -262,6 +197,7 @@ pub fn exact_at(spec: &TableSpec, x: &[f64], tol: f64) -> Result<Vec<f64>, Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lut::Convention;
 
     #[test]
     fn grids_hold_texels_midpoints_and_ends() {
