@@ -12,7 +12,10 @@
 //! one fused multiply-add per step, so a polynomial of k coefficients costs at most k − 1
 //! operations ([`Support::horner_cost`]).
 
-/// The exponents of a polynomial's monomials, downward closed, in lexicographic order.
+/// The exponents of a polynomial's monomials in lexicographic order: downward closed
+/// ([`Support::from_exponents`]), or sparse but closed under lowering one exponent by two
+/// ([`Support::sparse`]) — either way the span of its Chebyshev products is the span of its
+/// monomials, so a fit in the one basis converts exactly to the other.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Support {
     nvars: usize,
@@ -59,6 +62,34 @@ impl Support {
                 if e[v] > 0 {
                     let mut f = e.clone();
                     f[v] -= 1;
+                    if exps.binary_search(&f).is_err() {
+                        return None;
+                    }
+                }
+            }
+        }
+        Some(Support { nvars, exps })
+    }
+
+    /// A sparse support: the constant and any monomials, provided that lowering one
+    /// exponent ≥ 2 by two stays in the set (T_k(x) holds x^k, x^(k−2), …: the Chebyshev
+    /// products then span exactly these monomials). `None` if it is empty, lacks the
+    /// constant, a tuple has the wrong length, or that closure fails. For cheap forms whose
+    /// terms a shader can share: {1, r², e, e·r} needs no r term.
+    pub fn sparse(nvars: usize, mut exps: Vec<Vec<u8>>) -> Option<Support> {
+        exps.sort();
+        exps.dedup();
+        if exps.is_empty() || exps.iter().any(|e| e.len() != nvars) {
+            return None;
+        }
+        if exps.binary_search(&vec![0u8; nvars]).is_err() {
+            return None;
+        }
+        for e in &exps {
+            for v in 0..nvars {
+                if e[v] >= 2 {
+                    let mut f = e.clone();
+                    f[v] -= 2;
                     if exps.binary_search(&f).is_err() {
                         return None;
                     }
@@ -178,7 +209,8 @@ impl Support {
         let a = chebyshev_monomials(d);
         let mut out = vec![0.0; self.len()];
         for (c, f) in cheb.iter().zip(&self.exps) {
-            // T_f = Π_v Σ_j a[f_v][j] t_v^j: every e ≤ f is in the support (closed)
+            // T_f = Π_v Σ_j a[f_v][j] t_v^j, j ≤ f_v of f_v's parity: every such e is in
+            // the support (closed, or sparse: closed under lowering by two)
             for (k, e) in self.exps.iter().enumerate() {
                 let w: f64 = e
                     .iter()

@@ -295,6 +295,9 @@ pub fn verify_sidecar(
         }
     };
     let inputs = target::inputs(&t.spec);
+    fitted
+        .check(inputs.len())
+        .map_err(|m| bad(&format!("\"fit\" as brdfbake writes it ({m})")))?;
     let channels: Vec<String> = doc["channels"]
         .as_array()
         .map(|v| {

@@ -240,13 +240,78 @@ impl Fitted {
         }
     }
 
+    /// Whether the fit can be evaluated: its supports are supports of its variables and
+    /// every coefficient list matches its support (a sidecar may have been edited).
+    pub fn check(&self, ninputs: usize) -> Result<(), String> {
+        let n = self.vars.vars.len();
+        for v in &self.vars.vars {
+            let axes = match *v {
+                super::vars::Var::Axis { axis, .. } => vec![axis],
+                super::vars::Var::CornerAngle { mu, rough, .. }
+                | super::vars::Var::CornerRadius { mu, rough, .. } => vec![mu, rough],
+            };
+            if let Some(a) = axes.iter().find(|&&a| a >= ninputs) {
+                return Err(format!("a variable of input {a}; the table has {ninputs}"));
+            }
+        }
+        if self.vars.maps.len() != n {
+            return Err(format!("{} variables but {} maps", n, self.vars.maps.len()));
+        }
+        let one = |exps: &[Vec<u8>], ncoef: usize| -> Result<(), String> {
+            let s = valid_support(exps, n).ok_or_else(|| {
+                format!("exponents {exps:?} are not a support of {n} variables (the constant, and closed downward or under lowering by two)")
+            })?;
+            if s.len() != exps.len() || ncoef != exps.len() {
+                return Err(format!(
+                    "{} coefficients for {} distinct monomials",
+                    ncoef,
+                    s.len()
+                ));
+            }
+            Ok(())
+        };
+        match &self.form {
+            Form::Polynomial { channels } => {
+                for c in channels {
+                    one(&c.exponents, c.coef.len())?;
+                }
+            }
+            Form::Piecewise {
+                cells,
+                exponents,
+                coef,
+            } => {
+                if cells.len() != n {
+                    return Err(format!("{} cell counts for {n} variables", cells.len()));
+                }
+                let ncells: usize = cells.iter().product();
+                for c in coef {
+                    if c.len() != ncells {
+                        return Err(format!("{} cells of coefficients, {ncells} expected", c.len()));
+                    }
+                    for cell in c {
+                        one(exponents, cell.len())?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The program's operation counts.
     pub fn counts(&self, inputs: &[Input], channels: &[String]) -> OpCount {
         self.program(inputs, channels).counts()
     }
 }
 
-/// A support from stored exponents (validated where read: `verify` checks it).
+/// A support from stored exponents, downward closed or sparse (validated where read:
+/// [`Fitted::check`], which `verify` runs on a sidecar's fit).
 pub fn support(exps: &[Vec<u8>], nvars: usize) -> Support {
-    Support::from_exponents(nvars, exps.to_vec()).expect("a downward-closed support")
+    valid_support(exps, nvars).expect("a valid support")
+}
+
+/// The support of `exps` if it is one ([`Support::from_exponents`] or [`Support::sparse`]).
+fn valid_support(exps: &[Vec<u8>], nvars: usize) -> Option<Support> {
+    Support::from_exponents(nvars, exps.to_vec())
+        .or_else(|| Support::sparse(nvars, exps.to_vec()))
 }

@@ -129,6 +129,20 @@ pub fn search(
     }
     let supports = supports(nv, limits);
     let mut out = Vec::new();
+    // the cheapest forms: sparse, in the raw exponential variable and roughness
+    if let Some(Var::Axis {
+        axis: mu,
+        warp: Warp::Exp2 { rate },
+    }) = sets.last().and_then(|s| {
+        s.iter()
+            .find(|v| matches!(v, Var::Axis { warp: Warp::Exp2 { .. }, .. }))
+            .copied()
+    }) {
+        let rough = (0..nv).find(|&k| k != mu);
+        if let (2, Some(rough), false) = (nv, rough, stop()) {
+            out.extend(sparse(target, &pts, &w, mu, rough, rate, stop));
+        }
+    }
     for vs in &sets {
         if stop() {
             break;
@@ -153,6 +167,198 @@ pub fn search(
             })
             .expect("the linear set");
         out.extend(piecewise(target, &pts, &w, vs, limits, stop));
+    }
+    pareto(out)
+}
+
+/// Most monomials besides the constant in a sparse support ([`sparse`]).
+const SPARSE_TERMS: usize = 5;
+/// Supports per channel and Horner cost kept from the coarse ranking for the full fit.
+const SPARSE_KEEP: usize = 3;
+/// Points of the coarse ranking (every n-th validation point).
+const SPARSE_COARSE: usize = 4000;
+
+/// Sparse polynomials in the raw variables e = 2^(kμ) and r (both in [0, 1]: no maps onto
+/// [−1, 1], which cost an operation each) and, where a support uses it, s = r² computed once
+/// for every channel — the forms whose terms a shader shares, the cheap end of the front
+/// (A = c₀ + c₁r² + e(c₂ + c₃r + c₄r² + c₅e) and B = c₀ + e(c₁ + c₂r + c₃r²) cost 11
+/// operations together with e and s). Supports: the constant and 1 to [`SPARSE_TERMS`]
+/// monomials eⁱrʲsᵏ (i ≤ 2, j, k ≤ 1; [`Support::sparse`]), ranked per channel on every
+/// n-th point ([`SPARSE_COARSE`] of them), the best [`SPARSE_KEEP`] per Horner cost fitted
+/// on all points; every pair of the channels' fronts is a candidate.
+fn sparse(
+    target: &Target,
+    pts: &[Vec<f64>],
+    w: &[Option<Vec<f64>>],
+    mu: usize,
+    rough: usize,
+    rate: f32,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Vec<Candidate> {
+    let nc = target.values.len();
+    if nc > 2 {
+        return Vec::new();
+    }
+    let var3 = vec![
+        Var::Axis {
+            axis: mu,
+            warp: Warp::Exp2 { rate },
+        },
+        Var::Axis {
+            axis: rough,
+            warp: Warp::Linear,
+        },
+        Var::Axis {
+            axis: rough,
+            warp: Warp::Square,
+        },
+    ];
+    let vs3 = VarSet {
+        vars: var3.clone(),
+        maps: vec![(1.0, 0.0); 3],
+    };
+    let t: Vec<Vec<f64>> = pts.iter().map(|x| vs3.eval(x)).collect();
+    // the supports, in a fixed order
+    let monos: Vec<Vec<u8>> = (0..=2u8)
+        .flat_map(|i| (0..=1u8).flat_map(move |j| (0..=1u8).map(move |k| vec![i, j, k])))
+        .filter(|e| e.iter().any(|&x| x > 0))
+        .collect();
+    let mut supports: Vec<Support> = Vec::new();
+    let mut pick: Vec<usize> = Vec::new();
+    fn grow(
+        monos: &[Vec<u8>],
+        from: usize,
+        pick: &mut Vec<usize>,
+        out: &mut Vec<Support>,
+    ) {
+        if !pick.is_empty() {
+            let mut e: Vec<Vec<u8>> = pick.iter().map(|&i| monos[i].clone()).collect();
+            e.push(vec![0, 0, 0]);
+            if let Some(s) = Support::sparse(3, e) {
+                out.push(s);
+            }
+        }
+        if pick.len() == SPARSE_TERMS {
+            return;
+        }
+        for i in from..monos.len() {
+            pick.push(i);
+            grow(monos, i + 1, pick, out);
+            pick.pop();
+        }
+    }
+    grow(&monos, 0, &mut pick, &mut supports);
+    let step = (t.len() / SPARSE_COARSE).max(1);
+    let coarse: Vec<usize> = (0..t.len()).step_by(step).collect();
+    let tc: Vec<Vec<f64>> = coarse.iter().map(|&i| t[i].clone()).collect();
+    let per: Vec<Vec<polyfit::PolyFit>> = (0..nc)
+        .map(|c| {
+            let f = &target.values[c];
+            let fc: Vec<f64> = coarse.iter().map(|&i| f[i]).collect();
+            let wc: Option<Vec<f64>> = w[c]
+                .as_ref()
+                .map(|w| coarse.iter().map(|&i| w[i]).collect());
+            let ranked: Vec<(usize, f64)> = supports
+                .par_iter()
+                .enumerate()
+                .map(|(k, s)| {
+                    if stop() {
+                        return (k, f64::INFINITY);
+                    }
+                    let e = polyfit::fit(s, &tc, &fc, wc.as_deref())
+                        .map_or(f64::INFINITY, |r| r.max_error);
+                    (k, e)
+                })
+                .collect();
+            // the best few per Horner cost, in a fixed order
+            let mut by_cost: std::collections::BTreeMap<usize, Vec<(f64, usize)>> =
+                Default::default();
+            for (k, e) in ranked {
+                if e.is_finite() {
+                    by_cost
+                        .entry(supports[k].horner_cost())
+                        .or_default()
+                        .push((e, k));
+                }
+            }
+            let kept: Vec<usize> = by_cost
+                .into_values()
+                .flat_map(|mut v| {
+                    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                    v.into_iter().take(SPARSE_KEEP).map(|(_, k)| k)
+                })
+                .collect();
+            let mut fits: Vec<polyfit::PolyFit> = kept
+                .par_iter()
+                .filter_map(|&k| {
+                    if stop() {
+                        return None;
+                    }
+                    polyfit::fit(&supports[k], &t, f, w[c].as_deref()).ok()
+                })
+                .collect();
+            fits.sort_by(|a, b| {
+                a.support
+                    .horner_cost()
+                    .cmp(&b.support.horner_cost())
+                    .then(a.max_error.total_cmp(&b.max_error))
+            });
+            let mut front: Vec<polyfit::PolyFit> = Vec::new();
+            for f in fits {
+                if front.last().is_none_or(|l| f.max_error < l.max_error) {
+                    front.push(f);
+                }
+            }
+            front
+        })
+        .collect();
+    if stop() || per.iter().any(|p| p.is_empty()) {
+        return Vec::new();
+    }
+    let combos: Vec<Vec<usize>> = if nc == 1 {
+        (0..per[0].len()).map(|i| vec![i]).collect()
+    } else {
+        (0..per[0].len())
+            .flat_map(|i| (0..per[1].len()).map(move |j| vec![i, j]))
+            .collect()
+    };
+    let mut out = Vec::new();
+    for combo in combos {
+        let fits: Vec<&polyfit::PolyFit> =
+            combo.iter().enumerate().map(|(c, &j)| &per[c][j]).collect();
+        // without s in any channel: the two-variable set (no r² computed)
+        let uses_s = fits
+            .iter()
+            .any(|f| f.support.exponents().iter().any(|e| e[2] > 0));
+        let (vs, keep) = if uses_s {
+            (vs3.clone(), 3)
+        } else {
+            (
+                VarSet {
+                    vars: var3[..2].to_vec(),
+                    maps: vec![(1.0, 0.0); 2],
+                },
+                2,
+            )
+        };
+        let polys: Vec<ChannelPoly> = fits
+            .iter()
+            .map(|f| ChannelPoly {
+                exponents: f
+                    .support
+                    .exponents()
+                    .iter()
+                    .map(|e| e[..keep].to_vec())
+                    .collect(),
+                coef: f.coef.iter().map(|&v| v as f32).collect(),
+            })
+            .collect();
+        let fitted = Fitted {
+            vars: vs,
+            form: Form::Polynomial { channels: polys },
+        };
+        let error = fits.iter().map(|f| f.max_error).collect();
+        out.push(candidate(target, fitted, error, pts, w, &target.channels));
     }
     pareto(out)
 }
