@@ -287,7 +287,10 @@ impl Fitted {
                 let ncells: usize = cells.iter().product();
                 for c in coef {
                     if c.len() != ncells {
-                        return Err(format!("{} cells of coefficients, {ncells} expected", c.len()));
+                        return Err(format!(
+                            "{} cells of coefficients, {ncells} expected",
+                            c.len()
+                        ));
                     }
                     for cell in c {
                         one(exponents, cell.len())?;
@@ -312,6 +315,5 @@ pub fn support(exps: &[Vec<u8>], nvars: usize) -> Support {
 
 /// The support of `exps` if it is one ([`Support::from_exponents`] or [`Support::sparse`]).
 fn valid_support(exps: &[Vec<u8>], nvars: usize) -> Option<Support> {
-    Support::from_exponents(nvars, exps.to_vec())
-        .or_else(|| Support::sparse(nvars, exps.to_vec()))
+    Support::from_exponents(nvars, exps.to_vec()).or_else(|| Support::sparse(nvars, exps.to_vec()))
 }

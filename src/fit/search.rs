@@ -135,7 +135,15 @@ pub fn search(
         warp: Warp::Exp2 { rate },
     }) = sets.last().and_then(|s| {
         s.iter()
-            .find(|v| matches!(v, Var::Axis { warp: Warp::Exp2 { .. }, .. }))
+            .find(|v| {
+                matches!(
+                    v,
+                    Var::Axis {
+                        warp: Warp::Exp2 { .. },
+                        ..
+                    }
+                )
+            })
             .copied()
     }) {
         let rough = (0..nv).find(|&k| k != mu);
@@ -225,12 +233,7 @@ fn sparse(
         .collect();
     let mut supports: Vec<Support> = Vec::new();
     let mut pick: Vec<usize> = Vec::new();
-    fn grow(
-        monos: &[Vec<u8>],
-        from: usize,
-        pick: &mut Vec<usize>,
-        out: &mut Vec<Support>,
-    ) {
+    fn grow(monos: &[Vec<u8>], from: usize, pick: &mut Vec<usize>, out: &mut Vec<Support>) {
         if !pick.is_empty() {
             let mut e: Vec<Vec<u8>> = pick.iter().map(|&i| monos[i].clone()).collect();
             e.push(vec![0, 0, 0]);
