@@ -94,6 +94,21 @@ fn bake_writes_the_fit_verify_and_check_read_it() {
     .unwrap();
     let o = cli::run(d, &["verify", "one/p/envbrdf.fit.json"]);
     assert_eq!(o.status.code(), Some(1), "{}", cli::stderr(&o));
+    // exponents that are no support (x^3 without x): exit 2, no panic
+    let mut broken = fit.clone();
+    broken["fit"]["channels"][0]["exponents"] = serde_json::json!([[0, 0], [3, 0]]);
+    broken["fit"]["channels"][0]["coef"] = serde_json::json!([0.5, 0.1]);
+    std::fs::write(
+        d.join("one/p/envbrdf.fit.json"),
+        serde_json::to_string(&broken).unwrap(),
+    )
+    .unwrap();
+    cli::assert_fails(
+        &cli::run(d, &["verify", "one/p/envbrdf.fit.json"]),
+        2,
+        &["not a support"],
+        "a fit whose exponents are no support",
+    );
     // a fit sidecar from another bake than its table's: exit 2
     let mut other = fit.clone();
     other["input_hash"] = Value::from("sha256:00");

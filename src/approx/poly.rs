@@ -307,6 +307,27 @@ fn chebyshev_monomials(d: usize) -> Vec<Vec<f64>> {
 
 #[cfg(test)]
 mod tests {
+
+    /// A sparse support: the constant and monomials closed under lowering by two; its
+    /// Chebyshev coefficients convert exactly to monomial ones (the same polynomial).
+    #[test]
+    fn sparse_supports_convert_exactly() {
+        let s = Support::sparse(2, vec![vec![0, 0], vec![0, 2], vec![1, 1], vec![2, 0]]).unwrap();
+        assert_eq!(s.len(), 4);
+        assert!(Support::from_exponents(2, s.exponents().to_vec()).is_none());
+        let cheb = [0.3, -1.2, 0.7, 2.5];
+        let mono = s.to_monomial(&cheb);
+        for t in [[0.1, -0.4], [0.9, 0.2], [-0.7, 0.65]] {
+            let mut row = vec![0.0; s.len()];
+            s.chebyshev_row(&t, &mut row);
+            let direct: f64 = row.iter().zip(&cheb).map(|(a, b)| a * b).sum();
+            assert!((s.horner(&mono, &t) - direct).abs() < 1e-12, "{t:?}");
+        }
+        // no constant; x³ without x; a wrong tuple length
+        assert!(Support::sparse(2, vec![vec![1, 0]]).is_none());
+        assert!(Support::sparse(2, vec![vec![0, 0], vec![3, 0]]).is_none());
+        assert!(Support::sparse(2, vec![vec![0, 0], vec![1]]).is_none());
+    }
     use super::*;
 
     #[test]
