@@ -46,6 +46,13 @@ fn fit_table_is_the_commands_and_ours_beats_the_published_at_their_cost() {
         .find(|r| r.preset == "karis-envbrdf")
         .expect("the split sum row");
     let ours = karis.ours_same_ops.as_ref().unwrap();
+    // and a split-sum fit within 1e-3 (error plus f32 bound)
+    assert!(
+        karis.cheapest[0]
+            .as_ref()
+            .is_some_and(|c| c.max_total() <= 1e-3),
+        "no split-sum fit within 1e-3"
+    );
     assert!(
         5.0 * ours.max_total() <= karis.published_error,
         "ours {} at {} operations vs Karis' {} at {}",

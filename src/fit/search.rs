@@ -593,7 +593,20 @@ fn piecewise(
 ) -> Vec<Candidate> {
     let nv = vars.len();
     let vs = VarSet::map_to(vars.to_vec(), pts, 0.0, 1.0);
-    let x: Vec<Vec<f64>> = pts.iter().map(|p| vs.eval(p)).collect();
+    let mut x: Vec<Vec<f64>> = pts.iter().map(|p| vs.eval(p)).collect();
+    // fitted on the check set too (absolute error): a cell's polynomial in the corner
+    // variables can swing between the grid's points at grazing views, where the check set
+    // has a quarter of its points; each is a point the fit must hold
+    let absolute = w.iter().all(|w| w.is_none());
+    let mut values: Vec<Vec<f64>> = target.values.clone();
+    if absolute {
+        for (p, exact) in target.check.iter().zip(&target.check_values) {
+            x.push(vs.eval(&vars::clamp_inputs(&target.inputs, p)));
+            for (c, v) in values.iter_mut().enumerate() {
+                v.push(exact[c]);
+            }
+        }
+    }
     // one grid step of the validation set, in [0, 1] units, as the cells' overlap
     let margin = 1.0 / (target.shape().iter().copied().max().unwrap_or(2) - 1).max(1) as f64;
     let mut jobs = Vec::new();
@@ -611,7 +624,7 @@ fn piecewise(
             let s = Support::total_degree(nv, *d);
             let mut coef = Vec::new();
             let mut error = Vec::new();
-            for (c, vals) in target.values.iter().enumerate() {
+            for (c, vals) in values.iter().enumerate() {
                 let r =
                     polyfit::fit_piecewise(&s, cells, &x, vals, w[c].as_deref(), margin).ok()?;
                 error.push(r.max_error);
