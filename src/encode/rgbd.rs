@@ -185,6 +185,8 @@ mod tests {
             }
             x = if x < 2.0 { x + 0.01 } else { x * 1.07 };
         }
+        // docs/engines.md: half a code at values near 1 (D = 1) is 4.3e-3 after decoding
+        assert_eq!(format!("{:.1e}", rounding(255, 255)), "4.3e-3");
         assert!(encode_texel([256.0, 0.0, 0.0]).is_err());
         assert!(encode_texel([-1e-9, 0.0, 0.0]).is_err());
         assert!(encode_texel([f64::NAN, 0.0, 0.0]).is_err());
