@@ -887,22 +887,9 @@ fn read_ktx2(
         }));
     }
     let hd = r.header();
-    use crate::table::Storage;
-    use ::ktx2::Format as F;
-    let (storage, components) = match hd.format {
-        Some(F::R32_SFLOAT) => (Storage::F32, 1),
-        Some(F::R32G32_SFLOAT) => (Storage::F32, 2),
-        Some(F::R32G32B32A32_SFLOAT) => (Storage::F32, 4),
-        Some(F::R16_SFLOAT) => (Storage::F16, 1),
-        Some(F::R16G16_SFLOAT) => (Storage::F16, 2),
-        Some(F::R16G16B16A16_SFLOAT) => (Storage::F16, 4),
-        Some(F::R8_UNORM) => (Storage::Unorm8, 1),
-        Some(F::R8G8_UNORM) => (Storage::Unorm8, 2),
-        Some(F::R8G8B8A8_UNORM) => (Storage::Unorm8, 4),
-        Some(F::R16_UNORM) => (Storage::Unorm16, 1),
-        Some(F::R16G16_UNORM) => (Storage::Unorm16, 2),
-        Some(F::R16G16B16A16_UNORM) => (Storage::Unorm16, 4),
-        Some(f) => {
+    let (storage, components) = match hd.format.map(|f| (f, crate::encode::ktx2::storage_of(f))) {
+        Some((_, Some(held))) => held,
+        Some((f, None)) => {
             return Err(not_ours(format!(
                 "its vkFormat is {f:?}; brdfbake writes R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM"
             )))

@@ -271,6 +271,15 @@ fn vk_format(components: usize, storage: Storage) -> (Format, usize) {
     }
 }
 
+/// The storage and component count a `vkFormat` holds, where it is one [`vk_format`] writes
+/// (R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM): for readers of KTX2 files.
+pub fn storage_of(format: Format) -> Option<(Storage, usize)> {
+    Storage::ALL
+        .into_iter()
+        .flat_map(|s| [1, 2, 4].map(|c| (s, c)))
+        .find(|&(s, c)| vk_format(c, s).0 == format)
+}
+
 /// The Data Format Descriptor of the format of `components` components in `storage`
 /// (`*_SFLOAT` or `*_UNORM`): `dfdTotalSize` followed by one Basic descriptor block.
 fn data_format_descriptor(components: usize, storage: Storage) -> Vec<u8> {

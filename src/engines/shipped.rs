@@ -325,11 +325,24 @@ impl Shipped {
             // where texel (x, y, z) sits in the file
             let fy = if self.flip_y { ny - 1 - y } else { y };
             let ft = (z * ny + fy) * nx + x;
+            let index = |k: usize| match self.interleave.unwrap_or(Interleave::Texel) {
+                Interleave::Texel => ft * nc + k,
+                Interleave::Plane => k * texels + ft,
+            };
+            // an RGBD texel decodes as a whole (validated: an 8-bit RGBA PNG, D the fourth
+            // channel)
+            let rgbd = if self.decode == Some(Decode::Rgbd) {
+                let code = |k: usize| (raw[index(k)] * 255.0).round().clamp(0.0, 255.0) as u8;
+                let px = [code(0), code(1), code(2), code(3)];
+                let rgb = crate::encode::rgbd::decode_texel(px).ok_or_else(|| {
+                    format!("{name}: texel [{x}, {y}, {z}] has D = 0: not an RGBD texel")
+                })?;
+                Some((rgb, px))
+            } else {
+                None
+            };
             for c in 0..nc {
-                let i = match self.interleave.unwrap_or(Interleave::Texel) {
-                    Interleave::Texel => ft * nc + c,
-                    Interleave::Plane => c * texels + ft,
-                };
+                let i = index(c);
                 let v = raw[i];
                 if !v.is_finite() {
                     return Err(format!(
@@ -337,26 +350,12 @@ impl Shipped {
                         i + self.offset
                     ));
                 }
-                let (value, r) = if self.decode == Some(Decode::Rgbd) {
-                    // (validated: an 8-bit RGBA PNG, D the fourth channel)
-                    let code = |k: usize| {
-                        let i = match self.interleave.unwrap_or(Interleave::Texel) {
-                            Interleave::Texel => ft * nc + k,
-                            Interleave::Plane => k * texels + ft,
-                        };
-                        (raw[i] * 255.0).round().clamp(0.0, 255.0) as u8
-                    };
-                    let px = [code(0), code(1), code(2), code(3)];
-                    let rgb = crate::encode::rgbd::decode_texel(px).ok_or_else(|| {
-                        format!("{name}: texel [{x}, {y}, {z}] has D = 0: not an RGBD texel")
-                    })?;
-                    if c < 3 {
+                let (value, r) = match rgbd {
+                    Some((rgb, px)) if c < 3 => {
                         (rgb[c], crate::encode::rgbd::rounding(px[c], px[3]))
-                    } else {
-                        (0.0, 0.0) // D itself: listed as "-", not compared
                     }
-                } else {
-                    self.decoded(v, kinds[c])
+                    Some(_) => (0.0, 0.0), // D itself: listed as "-", not compared
+                    None => self.decoded(v, kinds[c]),
                 };
                 values[t * nc + c] = value;
                 rounding[t * nc + c] = r;
@@ -995,26 +994,18 @@ fn ktx2_values(bytes: &[u8], nc: usize, name: &str) -> Result<ImageValues, Strin
         .map_err(|_| format!("{name}: malformed KTX2 (the parser failed on it)"))?
         .map_err(|e| format!("{name}: not a KTX2 file brdfbake can read: {e}"))?;
     let hd = r.header();
-    use ktx2::Format as F;
-    let (kind, bytes_per, components) = match hd.format {
-        Some(F::R16_SFLOAT) => (NumberKind::Half, 2, 1),
-        Some(F::R16G16_SFLOAT) => (NumberKind::Half, 2, 2),
-        Some(F::R16G16B16A16_SFLOAT) => (NumberKind::Half, 2, 4),
-        Some(F::R32_SFLOAT) => (NumberKind::F32, 4, 1),
-        Some(F::R32G32_SFLOAT) => (NumberKind::F32, 4, 2),
-        Some(F::R32G32B32A32_SFLOAT) => (NumberKind::F32, 4, 4),
-        Some(F::R8_UNORM) => (NumberKind::Unorm(255.0), 1, 1),
-        Some(F::R8G8_UNORM) => (NumberKind::Unorm(255.0), 1, 2),
-        Some(F::R8G8B8A8_UNORM) => (NumberKind::Unorm(255.0), 1, 4),
-        Some(F::R16_UNORM) => (NumberKind::Unorm(65535.0), 2, 1),
-        Some(F::R16G16_UNORM) => (NumberKind::Unorm(65535.0), 2, 2),
-        Some(F::R16G16B16A16_UNORM) => (NumberKind::Unorm(65535.0), 2, 4),
-        f => {
-            return Err(format!(
-                "{name}: vkFormat {f:?}; a shipped KTX2 table is R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM"
-            ))
-        }
+    let Some((storage, components)) = hd.format.and_then(crate::encode::ktx2::storage_of) else {
+        return Err(format!(
+            "{name}: vkFormat {:?}; a shipped KTX2 table is R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM",
+            hd.format
+        ));
     };
+    let kind = match storage.unorm_max() {
+        Some(max) => NumberKind::Unorm(max as f64),
+        None if storage == crate::table::Storage::F16 => NumberKind::Half,
+        None => NumberKind::F32,
+    };
+    let bytes_per = storage.bytes();
     if components != nc {
         return Err(format!(
             "{name}: the KTX2 texels have {components} components, the preset's shipped.channels lists {nc}"
