@@ -271,7 +271,7 @@ fn vk_format(components: usize, storage: Storage) -> (Format, usize) {
     }
 }
 
-/// The storage and component count a `vkFormat` holds, where it is one [`vk_format`] writes
+/// The storage and component count a `vkFormat` holds, where it is one this encoder writes
 /// (R, RG or RGBA in 16- or 32-bit float or 8- or 16-bit UNORM): for readers of KTX2 files.
 pub fn storage_of(format: Format) -> Option<(Storage, usize)> {
     Storage::ALL
